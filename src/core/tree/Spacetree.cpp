@@ -1,0 +1,187 @@
+#include "tree/Spacetree.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace spacetree {
+
+namespace {
+// Relative margin on the mesh-size rule h >= 2(r + eps): a pair at exactly the cut-off
+// distance must still be strictly closer than h, whatever the rounding of its coordinates.
+constexpr double kMeshSizeMargin = 1e-9;
+}  // namespace
+
+Spacetree::Spacetree(SpacetreeOptions options) { setOptions(options); }
+
+void Spacetree::setOptions(const SpacetreeOptions& options) {
+  if (!(options.epsilon >= 0.0) || !std::isfinite(options.epsilon))
+    throw std::invalid_argument("spacetree: epsilon must be finite and >= 0");
+  if (options.maxLevel < 0 || options.maxLevel > kMaxSpacetreeLevel)
+    throw std::invalid_argument("spacetree: maxLevel must be in [0, " +
+                                std::to_string(kMaxSpacetreeLevel) + "]");
+  options_ = options;
+}
+
+double Spacetree::requiredMeshSize(double radius) const {
+  return 2.0 * (radius + options_.epsilon) * (1.0 + kMeshSizeMargin);
+}
+
+int Spacetree::hostLevel(double required) const {
+  // Finest level whose mesh is still big enough: drop as far as the particle fits.
+  const int finest = int(levels_.size()) - 1;
+  int l = finest;
+  if (required > 0.0) {
+    const double guess = std::floor(std::log(rootSize_ / required) / std::log(3.0));
+    l = int(std::clamp(guess, 0.0, double(finest)));
+  }
+  while (l > 0 && levels_[l].meshSize < required) --l;
+  while (l < finest && levels_[l + 1].meshSize >= required) ++l;
+  return l;
+}
+
+void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive) {
+  nActive_ = nActive;
+  levels_.clear();
+  stats_ = SpacetreeStatistics{};
+  particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
+  sx_.clear();
+  sy_.clear();
+  sz_.clear();
+  sr_.clear();
+  sortedId_.clear();
+  if (n <= 0) return;
+
+  // Bounding box and the smallest and biggest mesh sizes the particles ask for.
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::numeric_limits<double>::infinity();
+    hi[d] = -lo[d];
+  }
+  double minRadius = std::numeric_limits<double>::infinity(), maxRadius = 0.0;
+  for (int i = 0; i < n; ++i) {
+    for (int d = 0; d < 3; ++d) {
+      if (!std::isfinite(x[i][d]))
+        throw std::invalid_argument("spacetree: particle " + std::to_string(i) +
+                                    " has a non-finite position");
+      lo[d] = std::min(lo[d], x[i][d]);
+      hi[d] = std::max(hi[d], x[i][d]);
+    }
+    if (!(radius[i] >= 0.0) || !std::isfinite(radius[i]))
+      throw std::invalid_argument("spacetree: particle " + std::to_string(i) +
+                                  " has a negative or non-finite radius");
+    minRadius = std::min(minRadius, radius[i]);
+    maxRadius = std::max(maxRadius, radius[i]);
+  }
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const double coarsestNeed = requiredMeshSize(maxRadius);
+  double finestNeed = requiredMeshSize(minRadius);
+  const double rootNeed = std::max(extent, coarsestNeed);
+  if (!(finestNeed > 0.0)) finestNeed = rootNeed > 0.0 ? rootNeed : 1.0;
+
+  // Root cube: the finest mesh size the smallest particle needs, tripled until the cube covers
+  // the particles and the biggest particle. Choosing it from the smallest particle makes the
+  // finest level fit it tightly (no up-to-3x slack from the 3-way refinement there).
+  int depth = 0;
+  double root = finestNeed;
+  while (root < rootNeed && depth < options_.maxLevel) {
+    root *= 3.0;
+    ++depth;
+  }
+  if (root < rootNeed) root = rootNeed;  // depth capped: finest level coarser than ideal
+  rootSize_ = root;
+  for (int d = 0; d < 3; ++d) origin_[d] = lo[d];
+
+  levels_.resize(std::size_t(depth) + 1);
+  stats_.levels.resize(levels_.size());
+  for (int l = 0; l <= depth; ++l) {
+    levels_[l].meshSize = root / double(kPowersOfThree[l]);
+    stats_.levels[l].meshSize = levels_[l].meshSize;
+  }
+
+  // Drop every particle to its level and key it by its nearest vertex there.
+  sortScratch_.resize(std::size_t(n));
+  for (int i = 0; i < n; ++i) {
+    const int l = hostLevel(requiredMeshSize(radius[i]));
+    particleLevel_[i] = l;
+    const double inv = 1.0 / levels_[l].meshSize;
+    const std::int64_t vi = std::int64_t((x[i][0] - origin_[0]) * inv + 0.5);
+    const std::int64_t vj = std::int64_t((x[i][1] - origin_[1]) * inv + 0.5);
+    const std::int64_t vk = std::int64_t((x[i][2] - origin_[2]) * inv + 0.5);
+    sortScratch_[i] = SortEntry{packVertexKey(vi, vj, vk), l, i};
+  }
+  std::sort(sortScratch_.begin(), sortScratch_.end(), [](const SortEntry& a, const SortEntry& b) {
+    if (a.level != b.level) return a.level < b.level;
+    if (a.key != b.key) return a.key < b.key;
+    return a.id < b.id;
+  });
+
+  sx_.resize(std::size_t(n));
+  sy_.resize(std::size_t(n));
+  sz_.resize(std::size_t(n));
+  sr_.resize(std::size_t(n));
+  sortedId_.resize(std::size_t(n));
+  for (int s = 0; s < n; ++s) {
+    const int id = sortScratch_[s].id;
+    sx_[s] = x[id][0];
+    sy_[s] = x[id][1];
+    sz_[s] = x[id][2];
+    sr_[s] = radius[id];
+    sortedId_[s] = id;
+  }
+
+  // Vertices per level, and their look-up tables.
+  const std::uint64_t mask = (std::uint64_t(1) << kVertexKeyBits) - 1;
+  for (int s = 0; s < n;) {
+    const int l = sortScratch_[s].level;
+    Level& level = levels_[l];
+    int e = s;
+    while (e < n && sortScratch_[e].level == l) {
+      const std::uint64_t key = sortScratch_[e].key;
+      Vertex v;
+      v.index = VertexIndex{std::int32_t(std::int64_t((key >> (2 * kVertexKeyBits)) & mask) - kVertexKeyBias),
+                            std::int32_t(std::int64_t((key >> kVertexKeyBits) & mask) - kVertexKeyBias),
+                            std::int32_t(std::int64_t(key & mask) - kVertexKeyBias)};
+      v.begin = e;
+      v.active = 0;
+      while (e < n && sortScratch_[e].level == l && sortScratch_[e].key == key) {
+        if (sortScratch_[e].id < nActive_) ++v.active;
+        ++e;
+      }
+      v.end = e;
+      level.vertices.push_back(v);
+    }
+    level.lookup.reset(level.vertices.size());
+    for (std::size_t k = 0; k < level.vertices.size(); ++k) {
+      const VertexIndex& vi = level.vertices[k].index;
+      level.lookup.insert(packVertexKey(vi.i, vi.j, vi.k), std::int32_t(k));
+    }
+    stats_.levels[l].realParticles = std::uint64_t(e - s);
+    stats_.levels[l].vertices = level.vertices.size();
+    stats_.deepestPopulatedLevel = l;
+    s = e;
+  }
+
+  std::uint64_t bytes = (sx_.capacity() + sy_.capacity() + sz_.capacity() + sr_.capacity()) * sizeof(double) +
+                        (sortedId_.capacity() + particleLevel_.capacity()) * sizeof(std::int32_t) +
+                        sortScratch_.capacity() * sizeof(SortEntry);
+  for (const Level& level : levels_)
+    bytes += level.vertices.capacity() * sizeof(Vertex) + level.lookup.memoryBytes();
+  stats_.memoryBytes = bytes;
+}
+
+void Spacetree::gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
+                                            std::int64_t ak, std::vector<std::int32_t>& out) const {
+  out.clear();
+  const Level& level = levels_[coarseLevel];
+  for (int di = -1; di <= 1; ++di)
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int dk = -1; dk <= 1; ++dk) {
+        const std::int32_t w = level.lookup.find(packVertexKey(ai + di, aj + dj, ak + dk));
+        if (w == VertexHashMap::kAbsent) continue;
+        for (std::int32_t q = level.vertices[w].begin; q < level.vertices[w].end; ++q) out.push_back(q);
+      }
+}
+
+}  // namespace spacetree

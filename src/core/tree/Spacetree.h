@@ -1,0 +1,195 @@
+// Multilevel spacetree neighbour search (paper §4): a cascade of 3-way refined Cartesian
+// grids. Each particle is a *real* particle of the finest level whose mesh size h still
+// satisfies h >= 2(r + eps), hosted by the vertex nearest its centre. Coarser (bigger)
+// particles appear on finer vertices as *virtual links*, so every pair is found bottom-up on
+// the level of its smaller particle:
+//   - same level: a vertex against itself and its 13 "forward" neighbours (symmetry);
+//   - across levels: a vertex against its virtual links, i.e. the coarser real particles whose
+//     centre lies within r + 2 eps + h sqrt(3) of the vertex (the paper's projection radius).
+// Levels are sparse: only vertices that host particles exist, so the memory is per particle,
+// not per domain volume. The tree is rebuilt from scratch by build(); drop (to the finest
+// admissible level) and lift (to a coarser one when a particle grows) happen there.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "tree/SpacetreeStatistics.h"
+#include "tree/VertexHashMap.h"
+#include "tree/VertexKey.h"
+
+namespace spacetree {
+
+struct SpacetreeOptions {
+  double epsilon = 0.0;                 // halo: pairs closer than r_i + r_j + 2 eps are found
+  int maxLevel = kMaxSpacetreeLevel;    // deepest level below the root cube
+};
+
+class Spacetree {
+ public:
+  explicit Spacetree(SpacetreeOptions options = {});
+
+  void setOptions(const SpacetreeOptions& options);
+  const SpacetreeOptions& options() const { return options_; }
+
+  // Sorts the particles into the tree. Particles [0, nActive) are active (owned); a pair of two
+  // inactive particles (ghosts) is never reported. Throws std::invalid_argument for a
+  // non-finite position or radius, or a negative radius.
+  void build(const double (*x)[3], const double* radius, int n, int nActive);
+
+  // Calls visit(i, j) (original indices, i != j) once for every unordered candidate pair with
+  // at least one active particle. The candidates are a superset of the pairs with
+  // |x_i - x_j| <= r_i + r_j + 2 eps; the visitor applies the exact cut-off.
+  template <class Visitor>
+  void forEachCandidatePair(Visitor&& visit);
+
+  int levelOf(int particle) const { return particleLevel_[particle]; }
+  int levelCount() const { return int(levels_.size()); }
+  double meshSize(int level) const { return levels_[level].meshSize; }
+  double rootSize() const { return rootSize_; }
+  const std::array<double, 3>& origin() const { return origin_; }
+  // Mesh size a particle of this radius needs: h >= 2 (r + eps), with a relative safety margin
+  // so that touching-at-the-cut-off pairs land on adjacent vertices despite round-off.
+  double requiredMeshSize(double radius) const;
+
+  // Counters of the last build() and forEachCandidatePair().
+  const SpacetreeStatistics& statistics() const { return stats_; }
+
+ private:
+  struct Vertex {
+    VertexIndex index;
+    std::int32_t begin, end;  // range of hosted particles in the sorted arrays
+    std::int32_t active;      // how many of them are active
+  };
+  struct Level {
+    double meshSize = 0.0;
+    std::vector<Vertex> vertices;  // sorted by key
+    VertexHashMap lookup;          // key -> position in `vertices`
+  };
+  // Coarse particles near the last ancestor vertex looked up on one coarser level.
+  struct AncestorCache {
+    std::uint64_t ancestorKey = ~std::uint64_t(0);
+    std::vector<std::int32_t> candidates;
+  };
+
+  int hostLevel(double required) const;
+  void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
+                                   std::int64_t ak, std::vector<std::int32_t>& out) const;
+  bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
+
+  SpacetreeOptions options_;
+  double rootSize_ = 0.0;
+  std::array<double, 3> origin_{0.0, 0.0, 0.0};
+  std::vector<Level> levels_;
+  int nActive_ = 0;
+
+  // Particles sorted by (level, vertex key), structure of arrays for streaming access.
+  std::vector<double> sx_, sy_, sz_, sr_;
+  std::vector<std::int32_t> sortedId_;
+  std::vector<std::int32_t> particleLevel_;  // by original index
+
+  // Scratch, kept to avoid allocation on every build.
+  struct SortEntry {
+    std::uint64_t key;
+    std::int32_t level, id;
+  };
+  std::vector<SortEntry> sortScratch_;
+  std::vector<AncestorCache> ancestorCaches_;
+  std::vector<int> populatedCoarser_;
+
+  SpacetreeStatistics stats_;
+};
+
+inline constexpr std::array<std::int64_t, kMaxSpacetreeLevel + 1> kPowersOfThree{
+    1, 3, 9, 27, 81, 243, 729, 2187, 6561, 19683, 59049, 177147, 531441, 1594323};
+
+// The 13 neighbour offsets that are lexicographically positive: each unordered pair of
+// vertex-connected vertices is visited from exactly one side.
+inline constexpr std::array<std::array<int, 3>, 13> kForwardNeighbourOffsets{{
+    {1, -1, -1}, {1, -1, 0}, {1, -1, 1}, {1, 0, -1}, {1, 0, 0}, {1, 0, 1}, {1, 1, -1},
+    {1, 1, 0}, {1, 1, 1}, {0, 1, -1}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}};
+
+template <class Visitor>
+void Spacetree::forEachCandidatePair(Visitor&& visit) {
+  std::uint64_t candidatePairs = 0;
+  const double sqrt3 = std::sqrt(3.0);
+  const int nLevels = int(levels_.size());
+  ancestorCaches_.resize(nLevels);
+  for (auto& level : stats_.levels) level.virtualLinks = 0;
+
+  for (int l = 0; l < nLevels; ++l) {
+    const Level& level = levels_[l];
+    if (level.vertices.empty()) continue;
+    const double h = level.meshSize;
+
+    populatedCoarser_.clear();
+    for (int m = 0; m < l; ++m) {
+      if (!levels_[m].vertices.empty()) {
+        populatedCoarser_.push_back(m);
+        ancestorCaches_[m].ancestorKey = ~std::uint64_t(0);
+      }
+    }
+    // Virtual-link radius beyond the coarse particle's own radius (paper: r + 2 eps + h sqrt(d)).
+    const double linkReach = 2.0 * options_.epsilon + sqrt3 * h;
+    std::uint64_t virtualLinks = 0;
+
+    for (const Vertex& v : level.vertices) {
+      // 1. Real particles of this vertex among themselves.
+      for (std::int32_t a = v.begin; a < v.end; ++a)
+        for (std::int32_t b = a + 1; b < v.end; ++b)
+          if (isActive(a) || isActive(b)) visit(sortedId_[a], sortedId_[b]);
+      candidatePairs += std::uint64_t(v.end - v.begin) * (v.end - v.begin - 1) / 2;
+
+      // 2. Against the real particles of the forward vertex-connected neighbours.
+      for (const auto& o : kForwardNeighbourOffsets) {
+        const std::int32_t w = level.lookup.find(
+            packVertexKey(std::int64_t(v.index.i) + o[0], std::int64_t(v.index.j) + o[1],
+                          std::int64_t(v.index.k) + o[2]));
+        if (w == VertexHashMap::kAbsent) continue;
+        const Vertex& nb = level.vertices[w];
+        if (v.active == 0 && nb.active == 0) continue;
+        for (std::int32_t a = v.begin; a < v.end; ++a)
+          for (std::int32_t b = nb.begin; b < nb.end; ++b)
+            if (isActive(a) || isActive(b)) visit(sortedId_[a], sortedId_[b]);
+        candidatePairs += std::uint64_t(v.end - v.begin) * (nb.end - nb.begin);
+      }
+
+      // 3. Against virtual links: real particles of coarser levels near this vertex. They are
+      //    found through the nearest vertex (ancestor) on each coarser populated level, whose
+      //    3x3x3 neighbourhood holds every coarse particle that can reach this vertex.
+      const double vx = origin_[0] + v.index.i * h;
+      const double vy = origin_[1] + v.index.j * h;
+      const double vz = origin_[2] + v.index.k * h;
+      for (int m : populatedCoarser_) {
+        const std::int64_t s = kPowersOfThree[l - m];
+        const std::int64_t half = (s - 1) / 2;  // s is odd: nearest coarse vertex, no ties
+        const std::int64_t ai = (std::int64_t(v.index.i) + half) / s;
+        const std::int64_t aj = (std::int64_t(v.index.j) + half) / s;
+        const std::int64_t ak = (std::int64_t(v.index.k) + half) / s;
+        AncestorCache& cache = ancestorCaches_[m];
+        const std::uint64_t ancestorKey = packVertexKey(ai, aj, ak);
+        if (cache.ancestorKey != ancestorKey) {
+          cache.ancestorKey = ancestorKey;
+          gatherAncestorNeighbourhood(m, ai, aj, ak, cache.candidates);
+        }
+        for (std::int32_t q : cache.candidates) {
+          const double dx = sx_[q] - vx, dy = sy_[q] - vy, dz = sz_[q] - vz;
+          const double reach = sr_[q] + linkReach;
+          if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
+          ++virtualLinks;
+          const bool qActive = isActive(q);
+          if (!qActive && v.active == 0) continue;
+          for (std::int32_t a = v.begin; a < v.end; ++a)
+            if (qActive || isActive(a)) visit(sortedId_[a], sortedId_[q]);
+          candidatePairs += std::uint64_t(v.end - v.begin);
+        }
+      }
+    }
+    stats_.levels[l].virtualLinks = virtualLinks;
+  }
+  stats_.candidatePairs = candidatePairs;
+}
+
+}  // namespace spacetree

@@ -1,0 +1,63 @@
+// Open-addressing hash map from a packed vertex key to a vertex slot of one grid level.
+// Levels are sparse (only vertices that host particles exist), so a dense array per level
+// would cost memory proportional to the domain volume; this costs memory per particle.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace spacetree {
+
+class VertexHashMap {
+ public:
+  static constexpr std::int32_t kAbsent = -1;
+
+  // Forget all entries and size the table for `expected` keys (load factor <= 1/2).
+  void reset(std::size_t expected) {
+    std::size_t capacity = 16;
+    while (capacity < 2 * expected) capacity *= 2;
+    keys_.assign(capacity, kEmptyKey);
+    values_.resize(capacity);
+    mask_ = capacity - 1;
+  }
+
+  void insert(std::uint64_t key, std::int32_t value) {
+    std::size_t slot = hash(key) & mask_;
+    while (keys_[slot] != kEmptyKey && keys_[slot] != key) slot = (slot + 1) & mask_;
+    keys_[slot] = key;
+    values_[slot] = value;
+  }
+
+  std::int32_t find(std::uint64_t key) const {
+    std::size_t slot = hash(key) & mask_;
+    while (true) {
+      const std::uint64_t k = keys_[slot];
+      if (k == key) return values_[slot];
+      if (k == kEmptyKey) return kAbsent;
+      slot = (slot + 1) & mask_;
+    }
+  }
+
+  std::size_t memoryBytes() const {
+    return keys_.capacity() * sizeof(std::uint64_t) + values_.capacity() * sizeof(std::int32_t);
+  }
+
+ private:
+  // Packed keys use 63 bits, so all-ones never is a real key.
+  static constexpr std::uint64_t kEmptyKey = ~std::uint64_t(0);
+
+  static std::uint64_t hash(std::uint64_t k) {  // murmur3 finaliser
+    k ^= k >> 33;
+    k *= 0xff51afd7ed558ccdULL;
+    k ^= k >> 33;
+    k *= 0xc4ceb9fe1a85ec53ULL;
+    k ^= k >> 33;
+    return k;
+  }
+
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::int32_t> values_;
+  std::size_t mask_ = 0;
+};
+
+}  // namespace spacetree
