@@ -1,0 +1,30 @@
+/* spacetree-dem: state behind `neighbor <skin> spacetree [keyword value ...]`.
+   Owned by LAMMPS_NS::Neighbor (pointer `spacetree`, see liggghts_patch/). The
+   search itself lives in the LIGGGHTS-independent core (src/core/tree). */
+
+#ifndef LMP_NEIGH_SPACETREE_H
+#define LMP_NEIGH_SPACETREE_H
+
+#include <vector>
+
+#include "tree/Spacetree.h"
+
+namespace LAMMPS_NS {
+
+class NeighSpacetree {
+ public:
+  spacetree::SpacetreeOptions options;  // epsilon is set from the skin at each build
+  spacetree::Spacetree tree;
+  bool bins_for_meshes = false;         // a mesh wall reads Neighbor's bins
+
+  // Scratch of the list build, kept between builds to avoid reallocation.
+  std::vector<double> contact_radius;   // radius * contact_distance_factor
+  std::vector<int> first;               // CSR offsets of each owned atom's neighbours
+  std::vector<int> fill;
+  std::vector<int> neighbours;
+  std::vector<int> pair_i, pair_j;
+};
+
+}  // namespace LAMMPS_NS
+
+#endif
