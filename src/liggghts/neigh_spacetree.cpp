@@ -122,7 +122,9 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
 
-  // 1. Candidate pairs from the tree, cut exactly as the bin builder cuts.
+  // 1. Pairs from the tree. With contact_distance_factor 1 its cut-off is bit for bit the one
+  //    of granular_bin_no_newton; otherwise it is a superset (1e-12 relative) that is cut
+  //    again here with LIGGGHTS' expression.
   st.contact_radius.resize(nall);
   for (int i = 0; i < nall; i++) st.contact_radius[i] = radius[i]*contactDistanceFactor;
   st.options.epsilon = 0.5*skin;
@@ -138,23 +140,26 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   st.pair_j.clear();
   st.first.assign(nlocal+1,0);
   const double cdf = contactDistanceFactor, skin_ = skin;
+  const bool exact_cut = (cdf == 1.0 && 2.0*st.options.epsilon == skin);
   const int exclude_ = exclude;
-  st.tree.forEachCandidatePair([&](int a, int b) {
+  st.tree.forEachPairWithin([&](int a, int b) {
     // own/own pairs once under the lower index, own/ghost pairs under the owned atom
     const int i = a < b ? a : b;
     const int j = a < b ? b : a;
-    const double delx = x[i][0] - x[j][0];
-    const double dely = x[i][1] - x[j][1];
-    const double delz = x[i][2] - x[j][2];
-    const double rsq = delx*delx + dely*dely + delz*delz;
-    const double radsum = (radius[i] + radius[j]) * cdf;
-    const double cutsq = (radsum+skin_) * (radsum+skin_);
-    if (rsq > cutsq) return;
+    if (!exact_cut) {
+      const double delx = x[i][0] - x[j][0];
+      const double dely = x[i][1] - x[j][1];
+      const double delz = x[i][2] - x[j][2];
+      const double rsq = delx*delx + dely*dely + delz*delz;
+      const double radsum = (radius[i] + radius[j]) * cdf;
+      const double cutsq = (radsum+skin_) * (radsum+skin_);
+      if (rsq > cutsq) return;
+    }
     if (exclude_ && exclusion(i,j,type[i],type[j],mask,molecule)) return;
     st.pair_i.push_back(i);
     st.pair_j.push_back(j);
     st.first[i+1]++;
-  });
+  }, exact_cut ? 0.0 : 1e-12);
 
   // 2. Per-atom neighbour arrays (CSR), each sorted by index for a canonical order.
   int maxcount = 0;

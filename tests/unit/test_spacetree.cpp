@@ -29,7 +29,7 @@ struct Particles {
 
 using PairSet = std::set<std::pair<int, int>>;
 
-bool within(const Particles& p, int i, int j, double eps) {
+bool isPair(const Particles& p, int i, int j, double eps) {
   double d2 = 0.0;
   for (int d = 0; d < 3; ++d) d2 += (p.x[i][d] - p.x[j][d]) * (p.x[i][d] - p.x[j][d]);
   const double cut = p.r[i] + p.r[j] + 2.0 * eps;
@@ -40,7 +40,7 @@ PairSet bruteForce(const Particles& p, double eps, int nActive) {
   PairSet pairs;
   for (int i = 0; i < p.size(); ++i)
     for (int j = i + 1; j < p.size(); ++j)
-      if ((i < nActive || j < nActive) && within(p, i, j, eps)) pairs.insert({i, j});
+      if ((i < nActive || j < nActive) && isPair(p, i, j, eps)) pairs.insert({i, j});
   return pairs;
 }
 
@@ -56,7 +56,7 @@ PairSet treePairs(Spacetree& tree, const Particles& p, double eps, int nActive,
     if (i >= nActive && j >= nActive) inactive = true;
     const auto key = std::minmax(i, j);
     if (!seen.insert(key).second) duplicate = true;
-    if (within(p, i, j, eps)) pairs.insert(key);
+    if (isPair(p, i, j, eps)) pairs.insert(key);
   });
   EXPECT_FALSE(duplicate) << "a pair was visited twice";
   EXPECT_FALSE(self) << "a particle was paired with itself";
@@ -144,7 +144,7 @@ TEST(Spacetree, SmallParticlesInsideABigOneAreListed) {
   int withBig = 0;
   for (const auto& pr : found) withBig += pr.first == 0;
   int inside = 0;
-  for (int i = 1; i < p.size(); ++i) inside += within(p, 0, i, 0.001);
+  for (int i = 1; i < p.size(); ++i) inside += isPair(p, 0, i, 0.001);
   EXPECT_EQ(withBig, inside);
   EXPECT_GT(inside, 400);
 }
@@ -249,4 +249,22 @@ TEST(Spacetree, EmptyAndSingleParticle) {
   tree.forEachCandidatePair([&](int, int) { ++calls; });
   EXPECT_EQ(calls, 0);
   EXPECT_EQ(tree.statistics().levels[tree.levelOf(0)].realParticles, 1u);
+}
+
+TEST(Spacetree, PairsWithinMatchBruteForceAndAreASubsetOfCandidates) {
+  const Particles p = randomCloud(4000, 1.0, 0.001, 0.05, 14, true);
+  const double eps = 0.0015;
+  Spacetree tree(SpacetreeOptions{eps});
+  tree.build(p.positions(), p.r.data(), p.size(), p.size());
+  PairSet within, exact;
+  tree.forEachPairWithin([&](int i, int j) { within.insert(std::minmax(i, j)); });
+  for (const auto& pr : within)
+    if (isPair(p, pr.first, pr.second, eps)) exact.insert(pr);
+  EXPECT_EQ(exact, bruteForce(p, eps, p.size()));
+  // the tolerance admits nothing measurably beyond the cut-off
+  for (const auto& pr : within) {
+    double d2 = 0.0;
+    for (int d = 0; d < 3; ++d) d2 += std::pow(p.x[pr.first][d] - p.x[pr.second][d], 2);
+    EXPECT_LE(std::sqrt(d2), (p.r[pr.first] + p.r[pr.second] + 2 * eps) * (1 + 1e-11));
+  }
 }

@@ -101,21 +101,23 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
   }
 
   // Drop every particle to its level and key it by its nearest vertex there.
-  sortScratch_.resize(std::size_t(n));
+  sortKeys_.resize(std::size_t(n));
+  double lastRadius = -1.0;  // radii repeat (monodisperse species): skip the log
+  int lastLevel = 0;
   for (int i = 0; i < n; ++i) {
-    const int l = hostLevel(requiredMeshSize(radius[i]));
+    if (radius[i] != lastRadius) {
+      lastRadius = radius[i];
+      lastLevel = hostLevel(requiredMeshSize(radius[i]));
+    }
+    const int l = lastLevel;
     particleLevel_[i] = l;
     const double inv = 1.0 / levels_[l].meshSize;
     const std::int64_t vi = std::int64_t((x[i][0] - origin_[0]) * inv + 0.5);
     const std::int64_t vj = std::int64_t((x[i][1] - origin_[1]) * inv + 0.5);
     const std::int64_t vk = std::int64_t((x[i][2] - origin_[2]) * inv + 0.5);
-    sortScratch_[i] = SortEntry{packVertexKey(vi, vj, vk), l, i};
+    sortKeys_[i] = KeyedIndex{levelVertexKey(l, packVertexKey(vi, vj, vk)), i};
   }
-  std::sort(sortScratch_.begin(), sortScratch_.end(), [](const SortEntry& a, const SortEntry& b) {
-    if (a.level != b.level) return a.level < b.level;
-    if (a.key != b.key) return a.key < b.key;
-    return a.id < b.id;
-  });
+  radixSortByKey(sortKeys_, sortScratch_);
 
   sx_.resize(std::size_t(n));
   sy_.resize(std::size_t(n));
@@ -123,7 +125,7 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
   sr_.resize(std::size_t(n));
   sortedId_.resize(std::size_t(n));
   for (int s = 0; s < n; ++s) {
-    const int id = sortScratch_[s].id;
+    const int id = sortKeys_[s].index;
     sx_[s] = x[id][0];
     sy_[s] = x[id][1];
     sz_[s] = x[id][2];
@@ -132,31 +134,24 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
   }
 
   // Vertices per level, and their look-up tables.
-  const std::uint64_t mask = (std::uint64_t(1) << kVertexKeyBits) - 1;
   for (int s = 0; s < n;) {
-    const int l = sortScratch_[s].level;
+    const int l = int(sortKeys_[s].key >> kLevelShift);
     Level& level = levels_[l];
     int e = s;
-    while (e < n && sortScratch_[e].level == l) {
-      const std::uint64_t key = sortScratch_[e].key;
+    while (e < n && int(sortKeys_[e].key >> kLevelShift) == l) {
+      const std::uint64_t key = sortKeys_[e].key;
       Vertex v;
-      v.index = VertexIndex{std::int32_t(std::int64_t((key >> (2 * kVertexKeyBits)) & mask) - kVertexKeyBias),
-                            std::int32_t(std::int64_t((key >> kVertexKeyBits) & mask) - kVertexKeyBias),
-                            std::int32_t(std::int64_t(key & mask) - kVertexKeyBias)};
+      v.index = unpackVertexKey(key);
       v.begin = e;
       v.active = 0;
-      while (e < n && sortScratch_[e].level == l && sortScratch_[e].key == key) {
-        if (sortScratch_[e].id < nActive_) ++v.active;
+      while (e < n && sortKeys_[e].key == key) {
+        if (sortKeys_[e].index < nActive_) ++v.active;
         ++e;
       }
       v.end = e;
       level.vertices.push_back(v);
     }
-    level.lookup.reset(level.vertices.size());
-    for (std::size_t k = 0; k < level.vertices.size(); ++k) {
-      const VertexIndex& vi = level.vertices[k].index;
-      level.lookup.insert(packVertexKey(vi.i, vi.j, vi.k), std::int32_t(k));
-    }
+    level.lookup.build(level.vertices);
     stats_.levels[l].realParticles = std::uint64_t(e - s);
     stats_.levels[l].vertices = level.vertices.size();
     stats_.deepestPopulatedLevel = l;
@@ -165,7 +160,7 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
 
   std::uint64_t bytes = (sx_.capacity() + sy_.capacity() + sz_.capacity() + sr_.capacity()) * sizeof(double) +
                         (sortedId_.capacity() + particleLevel_.capacity()) * sizeof(std::int32_t) +
-                        sortScratch_.capacity() * sizeof(SortEntry);
+                        (sortKeys_.capacity() + sortScratch_.capacity()) * sizeof(KeyedIndex);
   for (const Level& level : levels_)
     bytes += level.vertices.capacity() * sizeof(Vertex) + level.lookup.memoryBytes();
   stats_.memoryBytes = bytes;
@@ -178,8 +173,8 @@ void Spacetree::gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, st
   for (int di = -1; di <= 1; ++di)
     for (int dj = -1; dj <= 1; ++dj)
       for (int dk = -1; dk <= 1; ++dk) {
-        const std::int32_t w = level.lookup.find(packVertexKey(ai + di, aj + dj, ak + dk));
-        if (w == VertexHashMap::kAbsent) continue;
+        const std::int32_t w = level.lookup.find(ai + di, aj + dj, ak + dk);
+        if (w == VertexLookup::kAbsent) continue;
         for (std::int32_t q = level.vertices[w].begin; q < level.vertices[w].end; ++q) out.push_back(q);
       }
 }

@@ -16,9 +16,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "tree/RadixSort.h"
 #include "tree/SpacetreeStatistics.h"
-#include "tree/VertexHashMap.h"
 #include "tree/VertexKey.h"
+#include "tree/VertexLookup.h"
 
 namespace spacetree {
 
@@ -43,7 +44,25 @@ class Spacetree {
   // at least one active particle. The candidates are a superset of the pairs with
   // |x_i - x_j| <= r_i + r_j + 2 eps; the visitor applies the exact cut-off.
   template <class Visitor>
-  void forEachCandidatePair(Visitor&& visit);
+  void forEachCandidatePair(Visitor&& visit) {
+    sweep([&](std::int32_t a, std::int32_t b) { visit(sortedId_[a], sortedId_[b]); });
+  }
+
+  // Like forEachCandidatePair, but only pairs with
+  //   dx^2 + dy^2 + dz^2 <= ((r_i + r_j + 2 eps) (1 + relativeTolerance))^2
+  // reach the visitor, evaluated in that order on the tree's own sorted copies (streaming
+  // access). With tolerance 0 this is bit for bit the cut-off of LIGGGHTS' granular builders
+  // (contact_distance_factor 1); a small tolerance makes it a superset of other roundings.
+  template <class Visitor>
+  void forEachPairWithin(Visitor&& visit, double relativeTolerance = 0.0) {
+    const double halo = 2.0 * options_.epsilon;
+    const double scale = 1.0 + relativeTolerance;
+    sweep([&](std::int32_t a, std::int32_t b) {
+      const double dx = sx_[a] - sx_[b], dy = sy_[a] - sy_[b], dz = sz_[a] - sz_[b];
+      const double cut = (sr_[a] + sr_[b] + halo) * scale;
+      if (dx * dx + dy * dy + dz * dz <= cut * cut) visit(sortedId_[a], sortedId_[b]);
+    });
+  }
 
   int levelOf(int particle) const { return particleLevel_[particle]; }
   int levelCount() const { return int(levels_.size()); }
@@ -66,7 +85,7 @@ class Spacetree {
   struct Level {
     double meshSize = 0.0;
     std::vector<Vertex> vertices;  // sorted by key
-    VertexHashMap lookup;          // key -> position in `vertices`
+    VertexLookup lookup;           // coordinates -> position in `vertices`
   };
   // Coarse particles near the last ancestor vertex looked up on one coarser level.
   struct AncestorCache {
@@ -74,6 +93,9 @@ class Spacetree {
     std::vector<std::int32_t> candidates;
   };
 
+  // The traversal; onPair(a, b) receives positions in the sorted arrays.
+  template <class PairFunction>
+  void sweep(PairFunction&& onPair);
   int hostLevel(double required) const;
   void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
                                    std::int64_t ak, std::vector<std::int32_t>& out) const;
@@ -91,11 +113,7 @@ class Spacetree {
   std::vector<std::int32_t> particleLevel_;  // by original index
 
   // Scratch, kept to avoid allocation on every build.
-  struct SortEntry {
-    std::uint64_t key;
-    std::int32_t level, id;
-  };
-  std::vector<SortEntry> sortScratch_;
+  std::vector<KeyedIndex> sortKeys_, sortScratch_;
   std::vector<AncestorCache> ancestorCaches_;
   std::vector<int> populatedCoarser_;
 
@@ -103,7 +121,7 @@ class Spacetree {
 };
 
 inline constexpr std::array<std::int64_t, kMaxSpacetreeLevel + 1> kPowersOfThree{
-    1, 3, 9, 27, 81, 243, 729, 2187, 6561, 19683, 59049, 177147, 531441, 1594323};
+    1, 3, 9, 27, 81, 243, 729, 2187, 6561, 19683, 59049, 177147, 531441};
 
 // The 13 neighbour offsets that are lexicographically positive: each unordered pair of
 // vertex-connected vertices is visited from exactly one side.
@@ -111,8 +129,8 @@ inline constexpr std::array<std::array<int, 3>, 13> kForwardNeighbourOffsets{{
     {1, -1, -1}, {1, -1, 0}, {1, -1, 1}, {1, 0, -1}, {1, 0, 0}, {1, 0, 1}, {1, 1, -1},
     {1, 1, 0}, {1, 1, 1}, {0, 1, -1}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}};
 
-template <class Visitor>
-void Spacetree::forEachCandidatePair(Visitor&& visit) {
+template <class PairFunction>
+void Spacetree::sweep(PairFunction&& onPair) {
   std::uint64_t candidatePairs = 0;
   const double sqrt3 = std::sqrt(3.0);
   const int nLevels = int(levels_.size());
@@ -134,25 +152,42 @@ void Spacetree::forEachCandidatePair(Visitor&& visit) {
     // Virtual-link radius beyond the coarse particle's own radius (paper: r + 2 eps + h sqrt(d)).
     const double linkReach = 2.0 * options_.epsilon + sqrt3 * h;
     std::uint64_t virtualLinks = 0;
+    const bool dense = level.lookup.dense();
+    std::array<std::int64_t, kForwardNeighbourOffsets.size()> denseOffsets{};
+    if (dense)
+      for (std::size_t n = 0; n < denseOffsets.size(); ++n)
+        denseOffsets[n] = level.lookup.denseOffset(kForwardNeighbourOffsets[n][0],
+                                                   kForwardNeighbourOffsets[n][1],
+                                                   kForwardNeighbourOffsets[n][2]);
 
     for (const Vertex& v : level.vertices) {
       // 1. Real particles of this vertex among themselves.
+      const bool allActive = v.active == v.end - v.begin;  // no ghost: skip per-pair checks
       for (std::int32_t a = v.begin; a < v.end; ++a)
         for (std::int32_t b = a + 1; b < v.end; ++b)
-          if (isActive(a) || isActive(b)) visit(sortedId_[a], sortedId_[b]);
+          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
       candidatePairs += std::uint64_t(v.end - v.begin) * (v.end - v.begin - 1) / 2;
 
       // 2. Against the real particles of the forward vertex-connected neighbours.
-      for (const auto& o : kForwardNeighbourOffsets) {
-        const std::int32_t w = level.lookup.find(
-            packVertexKey(std::int64_t(v.index.i) + o[0], std::int64_t(v.index.j) + o[1],
-                          std::int64_t(v.index.k) + o[2]));
-        if (w == VertexHashMap::kAbsent) continue;
+      const std::int64_t position =
+          dense ? level.lookup.densePosition(v.index.i, v.index.j, v.index.k) : 0;
+      for (int n = 0; n < int(kForwardNeighbourOffsets.size()); ++n) {
+        const auto& o = kForwardNeighbourOffsets[n];
+        const std::int32_t w =
+            dense ? level.lookup.atDensePosition(position + denseOffsets[n])
+                  : level.lookup.find(std::int64_t(v.index.i) + o[0], std::int64_t(v.index.j) + o[1],
+                                      std::int64_t(v.index.k) + o[2]);
+        if (w == VertexLookup::kAbsent) continue;
         const Vertex& nb = level.vertices[w];
         if (v.active == 0 && nb.active == 0) continue;
-        for (std::int32_t a = v.begin; a < v.end; ++a)
-          for (std::int32_t b = nb.begin; b < nb.end; ++b)
-            if (isActive(a) || isActive(b)) visit(sortedId_[a], sortedId_[b]);
+        if (allActive || nb.active == nb.end - nb.begin) {
+          for (std::int32_t a = v.begin; a < v.end; ++a)
+            for (std::int32_t b = nb.begin; b < nb.end; ++b) onPair(a, b);
+        } else {
+          for (std::int32_t a = v.begin; a < v.end; ++a)
+            for (std::int32_t b = nb.begin; b < nb.end; ++b)
+              if (isActive(a) || isActive(b)) onPair(a, b);
+        }
         candidatePairs += std::uint64_t(v.end - v.begin) * (nb.end - nb.begin);
       }
 
@@ -182,7 +217,7 @@ void Spacetree::forEachCandidatePair(Visitor&& visit) {
           const bool qActive = isActive(q);
           if (!qActive && v.active == 0) continue;
           for (std::int32_t a = v.begin; a < v.end; ++a)
-            if (qActive || isActive(a)) visit(sortedId_[a], sortedId_[q]);
+            if (qActive || allActive || isActive(a)) onPair(a, q);
           candidatePairs += std::uint64_t(v.end - v.begin);
         }
       }

@@ -5,13 +5,15 @@
 
 namespace spacetree {
 
-// 21 bits per axis. The bias keeps the small negative offsets that neighbour and ancestor
+// 20 bits per axis; the top 4 bits hold the level, so one integer sort orders particles by
+// (level, vertex). The bias keeps the small negative offsets that neighbour and ancestor
 // look-ups produce (down to -kVertexKeyBias) representable.
-constexpr int kVertexKeyBits = 21;
+constexpr int kVertexKeyBits = 20;
 constexpr std::int64_t kVertexKeyBias = 4;
+constexpr std::uint64_t kVertexKeyMask = (std::uint64_t(1) << kVertexKeyBits) - 1;
 
-// Deepest level a tree may use: 3^13 + 2*bias vertices per axis still fit into 21 bits.
-constexpr int kMaxSpacetreeLevel = 13;
+// Deepest level a tree may use: 3^12 + 2*bias vertices per axis still fit into 20 bits.
+constexpr int kMaxSpacetreeLevel = 12;
 
 struct VertexIndex {
   std::int32_t i, j, k;
@@ -20,6 +22,18 @@ struct VertexIndex {
 inline std::uint64_t packVertexKey(std::int64_t i, std::int64_t j, std::int64_t k) {
   return (std::uint64_t(i + kVertexKeyBias) << (2 * kVertexKeyBits)) |
          (std::uint64_t(j + kVertexKeyBias) << kVertexKeyBits) | std::uint64_t(k + kVertexKeyBias);
+}
+
+inline VertexIndex unpackVertexKey(std::uint64_t key) {
+  return VertexIndex{std::int32_t(std::int64_t((key >> (2 * kVertexKeyBits)) & kVertexKeyMask) - kVertexKeyBias),
+                     std::int32_t(std::int64_t((key >> kVertexKeyBits) & kVertexKeyMask) - kVertexKeyBias),
+                     std::int32_t(std::int64_t(key & kVertexKeyMask) - kVertexKeyBias)};
+}
+
+// Level in the top bits: sorting (level, vertex) is sorting one integer.
+constexpr int kLevelShift = 3 * kVertexKeyBits;
+inline std::uint64_t levelVertexKey(int level, std::uint64_t vertexKey) {
+  return (std::uint64_t(level) << kLevelShift) | vertexKey;
 }
 
 }  // namespace spacetree
