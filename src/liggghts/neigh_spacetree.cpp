@@ -142,26 +142,28 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   const double cdf = contactDistanceFactor, skin_ = skin;
   const bool exact_cut = (cdf == 1.0 && 2.0*st.options.epsilon == skin);
   const int exclude_ = exclude;
-  st.tree.forEachPairWithin([&](int a, int b) {
+  st.tree.forEachPairWithin([&](int a, int b, double rsq) {
     // own/own pairs once under the lower index, own/ghost pairs under the owned atom
     const int i = a < b ? a : b;
     const int j = a < b ? b : a;
+    const double radsum = (radius[i] + radius[j]) * cdf;
     if (!exact_cut) {
       const double delx = x[i][0] - x[j][0];
       const double dely = x[i][1] - x[j][1];
       const double delz = x[i][2] - x[j][2];
-      const double rsq = delx*delx + dely*dely + delz*delz;
-      const double radsum = (radius[i] + radius[j]) * cdf;
+      rsq = delx*delx + dely*dely + delz*delz;
       const double cutsq = (radsum+skin_) * (radsum+skin_);
       if (rsq > cutsq) return;
     }
     if (exclude_ && exclusion(i,j,type[i],type[j],mask,molecule)) return;
+    // touching pairs carry contact history: remember which, as a sign bit on j
     st.pair_i.push_back(i);
-    st.pair_j.push_back(j);
+    st.pair_j.push_back(rsq < radsum*radsum ? ~j : j);
     st.first[i+1]++;
   }, exact_cut ? 0.0 : 1e-12);
 
-  // 2. Per-atom neighbour arrays (CSR), each sorted by index for a canonical order.
+  // 2. Per-atom neighbour arrays (CSR), each sorted by index for a canonical order
+  //    (touching pairs, stored as ~j, sort first; the order is still deterministic).
   int maxcount = 0;
   for (int i = 0; i < nlocal; i++) {
     maxcount = std::max(maxcount,st.first[i+1]);
@@ -244,16 +246,12 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
 
     int nn = 0;
     for (int k = 0; k < n; k++) {
-      const int j = js[k];
+      const bool touching = js[k] < 0;
+      const int j = touching ? ~js[k] : js[k];
       neighptr[k] = j;
       if (!fix_history) continue;
-      const double delx = x[i][0] - x[j][0];
-      const double dely = x[i][1] - x[j][1];
-      const double delz = x[i][2] - x[j][2];
-      const double rsq = delx*delx + dely*dely + delz*delz;
-      const double radsum = (radius[i] + radius[j]) * cdf;
       int m = npartner[i];
-      if (rsq < radsum*radsum)
+      if (touching)
         for (m = 0; m < npartner[i]; m++)
           if (partner[i][m] == tag[j]) break;
       if (m < npartner[i]) {

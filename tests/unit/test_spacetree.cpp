@@ -257,7 +257,14 @@ TEST(Spacetree, PairsWithinMatchBruteForceAndAreASubsetOfCandidates) {
   Spacetree tree(SpacetreeOptions{eps});
   tree.build(p.positions(), p.r.data(), p.size(), p.size());
   PairSet within, exact;
-  tree.forEachPairWithin([&](int i, int j) { within.insert(std::minmax(i, j)); });
+  bool distanceRight = true;
+  tree.forEachPairWithin([&](int i, int j, double d2) {
+    within.insert(std::minmax(i, j));
+    double expected = 0.0;
+    for (int d = 0; d < 3; ++d) expected += (p.x[i][d] - p.x[j][d]) * (p.x[i][d] - p.x[j][d]);
+    distanceRight = distanceRight && d2 == expected;
+  });
+  EXPECT_TRUE(distanceRight) << "the squared distance handed to the visitor is not bit-exact";
   for (const auto& pr : within)
     if (isPair(p, pr.first, pr.second, eps)) exact.insert(pr);
   EXPECT_EQ(exact, bruteForce(p, eps, p.size()));

@@ -50,7 +50,7 @@ class Spacetree {
 
   // Like forEachCandidatePair, but only pairs with
   //   dx^2 + dy^2 + dz^2 <= ((r_i + r_j + 2 eps) (1 + relativeTolerance))^2
-  // reach the visitor, evaluated in that order on the tree's own sorted copies (streaming
+  // reach the visitor, as visit(i, j, squaredDistance), evaluated in that order on the tree's own sorted copies (streaming
   // access). With tolerance 0 this is bit for bit the cut-off of LIGGGHTS' granular builders
   // (contact_distance_factor 1); a small tolerance makes it a superset of other roundings.
   template <class Visitor>
@@ -60,7 +60,8 @@ class Spacetree {
     sweep([&](std::int32_t a, std::int32_t b) {
       const double dx = sx_[a] - sx_[b], dy = sy_[a] - sy_[b], dz = sz_[a] - sz_[b];
       const double cut = (sr_[a] + sr_[b] + halo) * scale;
-      if (dx * dx + dy * dy + dz * dz <= cut * cut) visit(sortedId_[a], sortedId_[b]);
+      const double distanceSquared = dx * dx + dy * dy + dz * dz;
+      if (distanceSquared <= cut * cut) visit(sortedId_[a], sortedId_[b], distanceSquared);
     });
   }
 
