@@ -22,10 +22,12 @@ verlet.cpp resets the build counter after setup) divided by `Neighbor list build
 the run: steps / every).  `Neigh time` includes the pre_neighbor fixes and the list build.
 Peak RSS from `/usr/bin/time -v` (maximum resident set size of the largest process).
 
-bin is skipped when its estimated run time exceeds --skip-bin-above seconds (estimate: from the
-bin runs already measured in this invocation, scaled by the candidate work N * min(N, n * V_stencil),
-or 8 ns per candidate pair without any), except that R values in --bin-single-R are measured with
-a single rebuild (steps = every) as long as that is estimated below --max-bin-seconds.
+bin is skipped when its estimated run time exceeds --skip-bin-above seconds, except that R values
+in --bin-single-R are measured with a single rebuild (steps = every) as long as that is estimated
+below --max-bin-seconds.  Estimate per rebuild: N * 0.3 us + C * t_c with C = N * min(N, n V) the
+candidate pairs a bin build examines (V: the +-2-bin stencil of bins of half the largest cutoff,
+about 0.6 (2.5 cutoff)^3, clipped to the box) and t_c = 2.5 ns, recalibrated from every measured bin
+run whose candidate work dominates.  Setup builds one more list before step 0 (not in Neigh time).
 
 Writes bench/results/neighbor_scaling.csv (+ .png) and prints a table with the speed-up.
 """
@@ -55,7 +57,8 @@ PACKS = {            # R -> (lattice sites per dimension, number of bigs)
     50: (60, 1),
     100: (100, 1),
 }
-NS_PER_CANDIDATE = 8.0   # bin: prior cost per candidate pair when nothing was measured yet
+NS_PER_CANDIDATE = 2.5   # bin cost model: t = N * US_PER_ATOM + candidates * NS_PER_CANDIDATE
+US_PER_ATOM = 0.3        # (priors; the candidate cost is recalibrated from each measured bin run)
 
 COLUMNS = ["R", "atoms", "style", "rebuilds", "ms_per_rebuild", "us_per_atom_per_rebuild", "neighbours",
            "peak_rss_mb", "total_s", "steps", "note"]
@@ -96,7 +99,9 @@ def run_liggghts(exe, mpiexec, mpiflags, np, data, style, steps, every, logpath,
     cmd = ["/usr/bin/time", "-v"]
     if np > 1:
         cmd += [mpiexec] + mpiflags + ["-np", str(np)]
-    cmd += [exe, "-in", DECK, "-log", logpath, "-echo", "none", "-screen", "none",
+    if shutil.which("stdbuf"):  # errors raised on one rank reach only the screen before MPI_Abort
+        cmd += ["stdbuf", "-oL", "-eL"]
+    cmd += [exe, "-in", DECK, "-log", logpath, "-echo", "none",
             "-var", "nstyle", style, "-var", "data", data, "-var", "nsteps", str(steps),
             "-var", "every", str(every), "-var", "skin", repr(SKIN)]
     for k, v in extra_vars.items():
@@ -106,12 +111,12 @@ def run_liggghts(exe, mpiexec, mpiflags, np, data, style, steps, every, logpath,
     t0 = time.time()
     try:
         r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
-                           env=env, timeout=timeout)
+                           errors="replace", env=env, timeout=timeout)
         out, rc = r.stdout, r.returncode
     except subprocess.TimeoutExpired as e:
         return {"error": "timeout after %.0f s" % timeout}
     wall = time.time() - t0
-    log = open(logpath).read() if os.path.exists(logpath) else ""
+    log = open(logpath, errors="replace").read() if os.path.exists(logpath) else ""
     res = {"total_s": wall, "cmd": " ".join(cmd)}
     if rc != 0:
         errs = [l for l in (log + out).splitlines() if "ERROR" in l]
@@ -171,7 +176,8 @@ def main():
     os.makedirs(a.results, exist_ok=True)
     mpiflags = a.mpiexec_flags.split()
     rows = []
-    bin_ref = None  # (seconds per rebuild, work) of the last measured bin run
+    bin_ref = None  # seconds per candidate pair, calibrated on the measured bin runs
+    check_nb = {}   # R -> (spacetree neighbours, steps) when bin ran fewer steps
 
     for R in a.R:
         Rn = int(R) if float(R).is_integer() else R
@@ -182,7 +188,7 @@ def main():
             note = ""
             if style == "bin":
                 w = bin_work(R, atoms)
-                t_build = (bin_ref[0] * w / bin_ref[1]) if bin_ref else NS_PER_CANDIDATE * 1e-9 * w
+                t_build = US_PER_ATOM * 1e-6 * atoms + (bin_ref if bin_ref else NS_PER_CANDIDATE * 1e-9) * w
                 builds = a.steps // a.every
                 est_full = (builds + 1) * t_build
                 est_single = 2 * t_build
@@ -196,13 +202,13 @@ def main():
                     print("  bin: %s" % note)
                     rows.append(dict(R=Rn, atoms=atoms, style=style, rebuilds=0, ms_per_rebuild="",
                                      us_per_atom_per_rebuild="", neighbours="", peak_rss_mb="", total_s="",
-                                     steps=0, note=note + " (estimate from %s)"
-                                     % ("measured bin runs" if bin_ref else "%g ns/candidate" % NS_PER_CANDIDATE)))
+                                     steps=0, note=note + " (%.2g ns per candidate pair%s)"
+                                     % (1e9 * (bin_ref or NS_PER_CANDIDATE * 1e-9),
+                                        ", calibrated on the measured bin runs" if bin_ref else ", prior")))
                     continue
                 print("  bin: estimated %.2f s per rebuild%s" % (t_build, (", " + note) if note else ""))
-            extra = {}
-            if style == "spacetree" and a.spacetree_opts:
-                extra["nopts"] = a.spacetree_opts
+            extra_st = {"nopts": a.spacetree_opts} if a.spacetree_opts else {}
+            extra = extra_st if style == "spacetree" else {}
             log = os.path.join(a.workdir, "R%g_%s_np%d.log" % (R, style, a.np))
             res = run_liggghts(a.exe, a.mpiexec, mpiflags, a.np, data, style, steps, a.every, log,
                                a.timeout, extra)
@@ -215,13 +221,20 @@ def main():
             b = res["builds"]
             per = res["neigh_s"] / b if b else float("nan")
             if style == "bin" and b:
-                bin_ref = (per, bin_work(R, atoms))
+                rest = per - US_PER_ATOM * 1e-6 * atoms
+                if rest > 0.5 * per:  # candidate work dominates: recalibrate the cost per candidate
+                    bin_ref = rest / bin_work(R, atoms)
             row = dict(R=Rn, atoms=res.get("atoms", atoms), style=style, rebuilds=b,
                        ms_per_rebuild="%.4g" % (1e3 * per),
                        us_per_atom_per_rebuild="%.4g" % (1e6 * per / atoms),
                        neighbours=res["neighbours"], peak_rss_mb="%.1f" % res["peak_rss_mb"],
                        total_s="%.2f" % res["total_s"], steps=steps, note=note)
             rows.append(row)
+            if style == "bin" and steps != a.steps and "spacetree" in a.styles:
+                # bin ran fewer steps: list the same configuration with spacetree for the check
+                chk = run_liggghts(a.exe, a.mpiexec, mpiflags, a.np, data, "spacetree", steps, a.every,
+                                   log.replace("_bin_", "_spacetree_check_"), a.timeout, extra_st)
+                check_nb[Rn] = (chk.get("neighbours", -1), steps)
             print("  %-9s %7d atoms  %3d rebuilds  %10.3f ms/rebuild  %8.3f us/atom/rebuild  %10d neighbours  "
                   "%8.1f MB  %7.1f s" % (style, row["atoms"], b, 1e3 * per, 1e6 * per / atoms, res["neighbours"],
                                           res["peak_rss_mb"], res["total_s"]))
@@ -235,8 +248,8 @@ def main():
     print("\nwrote %s" % csv_path)
 
     # table with the speed-up
-    print("\n%6s %8s %16s %16s %10s %12s" % ("R", "atoms", "spacetree ms/rb", "bin ms/rb", "speed-up",
-                                               "neighbours"))
+    print("\n%6s %8s %16s %16s %10s  %s" % ("R", "atoms", "spacetree ms/rb", "bin ms/rb", "speed-up",
+                                              "neighbour count spacetree vs bin"))
     for R in a.R:
         Rn = int(R) if float(R).is_integer() else R
         st = [r for r in rows if r["R"] == Rn and r["style"] == "spacetree" and r["ms_per_rebuild"] != ""]
@@ -246,10 +259,12 @@ def main():
         sp = "%.1fx" % (bb / s) if (s and bb) else "-"
         nb = ""
         if st and bn:
-            nb = "equal" if st[0]["neighbours"] == bn[0]["neighbours"] else "DIFFER %s/%s" % (
-                st[0]["neighbours"], bn[0]["neighbours"])
+            ref, label = st[0]["neighbours"], ""
+            if Rn in check_nb:
+                ref, label = check_nb[Rn][0], " (at step %d)" % check_nb[Rn][1]
+            nb = ("equal" if ref == bn[0]["neighbours"] else "DIFFER %s/%s" % (ref, bn[0]["neighbours"])) + label
         atoms = (st or bn or [{"atoms": "?"}])[0]["atoms"]
-        print("%6s %8s %16s %16s %10s %12s" % (Rn, atoms, "%.3f" % s if s else "-", "%.3f" % bb if bb else "-",
+        print("%6s %8s %16s %16s %10s  %s" % (Rn, atoms, "%.3f" % s if s else "-", "%.3f" % bb if bb else "-",
                                                sp, nb))
 
     try:

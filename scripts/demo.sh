@@ -35,10 +35,13 @@ echo "== demo: generating the pack"
 "$PY" scripts/gen_pack.py bidisperse --d 1e-3 --R 10 --n 30 --K 8 --boundary f --vel 0.1 \
       --seed 4242 --out "$DATA"
 
+# screen output goes line-buffered to build/demo/screen.<style>: an error raised on one rank
+# (e.g. a neighbour-list overflow) is printed only there before MPI_Abort
 launch=("$EXE")
+command -v stdbuf >/dev/null && launch=(stdbuf -oL -eL "$EXE")
 if [[ "$NP" != "1" ]]; then
   MPIRUN="$(command -v mpirun || command -v mpiexec)"
-  launch=("$MPIRUN" --allow-run-as-root --oversubscribe -np "$NP" "$EXE")
+  launch=("$MPIRUN" --allow-run-as-root --oversubscribe -np "$NP" "${launch[@]}")
 fi
 
 for style in spacetree bin; do
@@ -46,9 +49,9 @@ for style in spacetree bin; do
   start=$(date +%s.%N)
   if ! "$TIME" -v -o "$OUT/time.$style" "${launch[@]}" -in inputs/demo/in.polydisperse_settle \
         -var nstyle "$style" -var data "$DATA" -var nsteps "$STEPS" \
-        -log "$OUT/log.$style" -echo none -screen none; then
-    echo "demo: the $style run failed; see $OUT/log.$style:" >&2
-    grep -h ERROR "$OUT/log.$style" >&2 || tail -20 "$OUT/log.$style" >&2 || true
+        -log "$OUT/log.$style" -echo none > "$OUT/screen.$style" 2>&1; then
+    echo "demo: the $style run failed; see $OUT/screen.$style and $OUT/log.$style:" >&2
+    grep -h ERROR "$OUT/screen.$style" "$OUT/log.$style" >&2 || tail -20 "$OUT/screen.$style" >&2 || true
     exit 1
   fi
   end=$(date +%s.%N)
@@ -90,7 +93,7 @@ rows = [
     ("pair time (s)", "%.3f" % s["pair"], "%.3f" % b["pair"], ""),
     ("loop time (s)", "%.2f" % s["loop"], "%.2f" % b["loop"], "%.1fx" % (b["loop"] / s["loop"])),
     ("total wall time (s)", "%.2f" % s["wall"], "%.2f" % b["wall"], "%.1fx" % (b["wall"] / s["wall"])),
-    ("peak memory (MB)", "%.1f" % s["rss"], "%.1f" % b["rss"], ""),
+    ("peak memory (MB%s)" % ("" if np == "1" else ", largest rank"), "%.1f" % s["rss"], "%.1f" % b["rss"], ""),
     ("final kinetic energy", s["last"][2], b["last"][2], ""),
 ]
 w0 = max(len(r[0]) for r in rows)
