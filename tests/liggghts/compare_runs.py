@@ -82,6 +82,13 @@ PAIR_CASES = collections.OrderedDict([
         gen=["bidisperse", "--R", "10", "--n", "22", "--K", "8", "--boundary", "p", "--vel", "1.0",
              "--bigs-first", "--seed", "106"],
         bnd="p", min_pairs=8000, min_cross=400)),
+    ("r100_bi_periodic_maxlevel2", dict(
+        # as r100_bi_periodic, with a shallow tree (`neighbor ... spacetree maxlevel 2`): the list
+        # must stay exact for any maxlevel
+        gen=["bidisperse", "--R", "100", "--n", "130", "--K", "1", "--boundary", "p", "--vel", "1.0",
+             "--big-at", "0.5", "0.5", "0.5", "--lattice-region", "0.78", "0.95", "0.35", "0.65",
+             "0.35", "0.65", "--shell", "3", "--seed", "107"],
+        bnd="p", st_vars={"nopts": "maxlevel 2"}, min_pairs=4000, min_cross=250)),
 ])
 PAIR_VARS = {"skin": "3e-4", "nsteps": "40", "dumpevery": "10", "dt": "4e-6"}
 
@@ -357,7 +364,7 @@ def test_pairs(R, case, np):
             dup = [p for p, k in first.items() if k > 1]
             if dup:
                 raise Fail("bin np1 lists %d pairs twice in a non-periodic box" % len(dup))
-        R.run("in.pairs", "spacetree_np1", 1, dict(base, nstyle="spacetree"))
+        R.run("in.pairs", "spacetree_np1", 1, dict(base, nstyle="spacetree", **c.get("st_vars", {})))
         st = parse_local_dump(os.path.join(R.work, "spacetree_np1.pairs"))
         compare_pairsets("spacetree np1 vs bin np1", ref, st, True, atoms, boxes, periodic, skin)
         print("  PASS spacetree np1 == bin np1 (multisets of pairs at steps %s)" % steps)
@@ -366,7 +373,7 @@ def test_pairs(R, case, np):
         binn = parse_local_dump(os.path.join(R.work, "bin_np%d.pairs" % np))
         compare_pairsets("bin np%d vs bin np1 (harness sanity)" % np, ref, binn, False, atoms, boxes,
                          periodic, skin)
-        R.run("in.pairs", "spacetree_np%d" % np, np, dict(base, nstyle="spacetree"))
+        R.run("in.pairs", "spacetree_np%d" % np, np, dict(base, nstyle="spacetree", **c.get("st_vars", {})))
         st = parse_local_dump(os.path.join(R.work, "spacetree_np%d.pairs" % np))
         compare_pairsets("spacetree np%d vs bin np%d" % (np, np), binn, st, True, atoms, boxes, periodic, skin)
         compare_pairsets("spacetree np%d vs bin np1" % np, ref, st, False, atoms, boxes, periodic, skin)
