@@ -158,11 +158,24 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
     s = e;
   }
 
+  // Precompute the virtual-link candidates of a coarse level when it pays: building costs
+  // 2 x 27 look-ups per coarse vertex, gathering on demand up to 27 per finer vertex but
+  // consecutive finer vertices often share their ancestor (factor 4 measured best on dense
+  // bidisperse and dilute 1:100 continuous packs).
+  std::size_t finerVertices = 0;
+  for (int l = stats_.deepestPopulatedLevel; l >= 0; --l) {
+    Level& level = levels_[l];
+    level.precomputedNeighbourhoods = !level.vertices.empty() && finerVertices > 4 * level.vertices.size();
+    if (level.precomputedNeighbourhoods) level.neighbourhoods.build(level.vertices);
+    finerVertices += level.vertices.size();
+  }
+
   std::uint64_t bytes = (sx_.capacity() + sy_.capacity() + sz_.capacity() + sr_.capacity()) * sizeof(double) +
                         (sortedId_.capacity() + particleLevel_.capacity()) * sizeof(std::int32_t) +
                         (sortKeys_.capacity() + sortScratch_.capacity()) * sizeof(KeyedIndex);
   for (const Level& level : levels_)
-    bytes += level.vertices.capacity() * sizeof(Vertex) + level.lookup.memoryBytes();
+    bytes += level.vertices.capacity() * sizeof(Vertex) + level.lookup.memoryBytes() +
+             level.neighbourhoods.memoryBytes();
   stats_.memoryBytes = bytes;
 }
 

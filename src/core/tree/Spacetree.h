@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "tree/CoarseNeighbourhoods.h"
 #include "tree/RadixSort.h"
 #include "tree/SpacetreeStatistics.h"
 #include "tree/VertexKey.h"
@@ -85,10 +86,14 @@ class Spacetree {
   };
   struct Level {
     double meshSize = 0.0;
-    std::vector<Vertex> vertices;  // sorted by key
-    VertexLookup lookup;           // coordinates -> position in `vertices`
+    std::vector<Vertex> vertices;         // sorted by key
+    VertexLookup lookup;                  // coordinates -> position in `vertices`
+    // Virtual-link candidates for finer vertices: precomputed per coarse vertex when many
+    // finer vertices will ask (dense fine levels), else gathered on demand and cached.
+    bool precomputedNeighbourhoods = false;
+    CoarseNeighbourhoods neighbourhoods;
   };
-  // Coarse particles near the last ancestor vertex looked up on one coarser level.
+  // Coarse particles near the last ancestor vertex gathered on one coarser level.
   struct AncestorCache {
     std::uint64_t ancestorKey = ~std::uint64_t(0);
     std::vector<std::int32_t> candidates;
@@ -135,8 +140,9 @@ void Spacetree::sweep(PairFunction&& onPair) {
   std::uint64_t candidatePairs = 0;
   const double sqrt3 = std::sqrt(3.0);
   const int nLevels = int(levels_.size());
-  ancestorCaches_.resize(nLevels);
   for (auto& level : stats_.levels) level.virtualLinks = 0;
+  ancestorCaches_.resize(nLevels);
+  for (auto& cache : ancestorCaches_) cache.ancestorKey = ~std::uint64_t(0);
 
   for (int l = 0; l < nLevels; ++l) {
     const Level& level = levels_[l];
@@ -145,10 +151,7 @@ void Spacetree::sweep(PairFunction&& onPair) {
 
     populatedCoarser_.clear();
     for (int m = 0; m < l; ++m) {
-      if (!levels_[m].vertices.empty()) {
-        populatedCoarser_.push_back(m);
-        ancestorCaches_[m].ancestorKey = ~std::uint64_t(0);
-      }
+      if (!levels_[m].vertices.empty()) populatedCoarser_.push_back(m);
     }
     // Virtual-link radius beyond the coarse particle's own radius (paper: r + 2 eps + h sqrt(d)).
     const double linkReach = 2.0 * options_.epsilon + sqrt3 * h;
@@ -204,13 +207,20 @@ void Spacetree::sweep(PairFunction&& onPair) {
         const std::int64_t ai = (std::int64_t(v.index.i) + half) / s;
         const std::int64_t aj = (std::int64_t(v.index.j) + half) / s;
         const std::int64_t ak = (std::int64_t(v.index.k) + half) / s;
-        AncestorCache& cache = ancestorCaches_[m];
-        const std::uint64_t ancestorKey = packVertexKey(ai, aj, ak);
-        if (cache.ancestorKey != ancestorKey) {
-          cache.ancestorKey = ancestorKey;
-          gatherAncestorNeighbourhood(m, ai, aj, ak, cache.candidates);
+        CoarseNeighbourhoods::Range candidates;
+        if (levels_[m].precomputedNeighbourhoods) {
+          candidates = levels_[m].neighbourhoods.near(ai, aj, ak);
+        } else {
+          AncestorCache& cache = ancestorCaches_[m];
+          const std::uint64_t ancestorKey = packVertexKey(ai, aj, ak);
+          if (cache.ancestorKey != ancestorKey) {
+            cache.ancestorKey = ancestorKey;
+            gatherAncestorNeighbourhood(m, ai, aj, ak, cache.candidates);
+          }
+          candidates = {cache.candidates.data(), cache.candidates.data() + cache.candidates.size()};
         }
-        for (std::int32_t q : cache.candidates) {
+        for (const std::int32_t* c = candidates.begin; c != candidates.end; ++c) {
+          const std::int32_t q = *c;
           const double dx = sx_[q] - vx, dy = sy_[q] - vy, dz = sz_[q] - vz;
           const double reach = sr_[q] + linkReach;
           if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
