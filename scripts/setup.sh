@@ -10,7 +10,8 @@ SUDO=""; [ "$(id -u)" = 0 ] || SUDO="sudo"
 export DEBIAN_FRONTEND=noninteractive
 
 pkgs=(g++ cmake ninja-build ccache make patch xz-utils dpkg-dev libopenmpi-dev openmpi-bin
-      libeigen3-dev libtbb-dev libgtest-dev python3 python3-numpy python3-matplotlib time)
+      libeigen3-dev libtbb-dev libgtest-dev python3 python3-numpy python3-matplotlib time
+      libcgal-dev libfcl-dev)
 missing=()
 for p in "${pkgs[@]}"; do dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p"); done
 

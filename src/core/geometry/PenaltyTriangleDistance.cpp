@@ -1,0 +1,306 @@
+#include "geometry/PenaltyTriangleDistance.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "geometry/IsaDispatch.h"
+#include "geometry/TrianglePairSources.h"
+
+// Build note: the loops below are vectorised when compiled with -O3 (or -O2) plus
+// -fopenmp-simd (honours `omp simd`), -fno-math-errno (sqrt without errno) and
+// -fno-trapping-math (if-conversion of the admissibility clamps); CMake sets these for the
+// geometry sources. None of them changes a result; without them the kernel stays correct but
+// partly scalar.
+
+namespace spacetree::geometry {
+namespace {
+
+constexpr int kLanes = kTrianglePairBatchSize;
+
+// By-value min/max: std::min/max return references, which on array elements turn into
+// address selects that stop the vectoriser ("control flow in loop").
+SPACETREE_INLINE_INTO_CLONES double smaller(double a, double b) { return a < b ? a : b; }
+SPACETREE_INLINE_INTO_CLONES double larger(double a, double b) { return a > b ? a : b; }
+
+// Plain 3-vectors and the local geometry of one lane for the final (certification) loop: small
+// value types that the compiler keeps in registers, so the loop vectorises like scalar code.
+struct Vec3 {
+  double x, y, z;
+};
+SPACETREE_INLINE_INTO_CLONES Vec3 operator+(Vec3 p, Vec3 q) { return {p.x + q.x, p.y + q.y, p.z + q.z}; }
+SPACETREE_INLINE_INTO_CLONES Vec3 operator-(Vec3 p, Vec3 q) { return {p.x - q.x, p.y - q.y, p.z - q.z}; }
+SPACETREE_INLINE_INTO_CLONES Vec3 operator*(Vec3 p, double s) { return {p.x * s, p.y * s, p.z * s}; }
+SPACETREE_INLINE_INTO_CLONES double dot(Vec3 p, Vec3 q) { return p.x * q.x + p.y * q.y + p.z * q.z; }
+SPACETREE_INLINE_INTO_CLONES Vec3 cross(Vec3 p, Vec3 q) {
+  return {p.y * q.z - p.z * q.y, p.z * q.x - p.x * q.z, p.x * q.y - p.y * q.x};
+}
+SPACETREE_INLINE_INTO_CLONES Vec3 select(bool condition, Vec3 p, Vec3 q) {
+  return {condition ? p.x : q.x, condition ? p.y : q.y, condition ? p.z : q.z};
+}
+
+// A pair relative to the first triangle's vertex 0: A = {0, a1, a2}, B = b0 + {0, b1, b2}.
+struct LocalPair {
+  Vec3 a1, a2, b0, b1, b2;
+};
+
+// Separating-axis bound along direction m (any length): every point of A lies within
+// [minA, maxA] along m / |m|, every point of B within [minB, maxB], so the triangles are at
+// least max(minA - maxB, minB - maxA) apart. A zero direction (degenerate triangle, parallel
+// edges, coincident points) gives 0.
+SPACETREE_INLINE_INTO_CLONES double separationAlong(Vec3 m, LocalPair p) {
+  const double norm = std::sqrt(dot(m, m));
+  const double inverse = (norm > 0.0 ? 1.0 : 0.0) / larger(norm, 1e-300);
+  const double pa1 = dot(m, p.a1) * inverse, pa2 = dot(m, p.a2) * inverse;
+  const double pb0 = dot(m, p.b0) * inverse;
+  const double pb1 = pb0 + dot(m, p.b1) * inverse, pb2 = pb0 + dot(m, p.b2) * inverse;
+  const double minA = smaller(0.0, smaller(pa1, pa2)), maxA = larger(0.0, larger(pa1, pa2));
+  const double minB = smaller(pb0, smaller(pb1, pb2)), maxB = larger(pb0, larger(pb1, pb2));
+  return larger(minA - maxB, minB - maxA);
+}
+
+// The edge of a triangle (spanned by e1, e2 from vertex 0) that the point with barycentric
+// parameters (s1, s2) lies on or nearest to: the constraint with the smallest slack among
+// s1 >= 0 (edge e2), s2 >= 0 (edge e1) and s1 + s2 <= 1 (edge e2 - e1).
+SPACETREE_INLINE_INTO_CLONES Vec3 contactEdge(double s1, double s2, Vec3 e1, Vec3 e2) {
+  const double s3 = 1.0 - s1 - s2;
+  return select(s1 <= s2 && s1 <= s3, e2, select(s2 <= s3, e1, e2 - e1));
+}
+
+// Penalty weight of Newton step `step` of `steps`, in units of the mean squared edge length: a
+// geometric ramp from kFirstPenaltyWeight to kFinalPenaltyWeight (continuation, see the
+// header). Measured on random and sphere-contact pairs, the ramp's end points hardly change
+// how many pairs converge; the final weight sets the accuracy (violation ~ 1 / weight).
+constexpr double kFirstPenaltyWeight = 1.0;
+constexpr double kFinalPenaltyWeight = 1e12;
+
+// weights[steps][step] for every admissible step count, computed once (thread-safe static).
+struct PenaltyWeightTable {
+  double weights[kMaxNewtonIterations + 1][kMaxNewtonIterations];
+  PenaltyWeightTable() {
+    for (int steps = 1; steps <= kMaxNewtonIterations; ++steps)
+      for (int step = 0; step < steps; ++step) {
+        const double t = steps > 1 ? double(step) / double(steps - 1) : 1.0;
+        weights[steps][step] =
+            kFirstPenaltyWeight * std::pow(kFinalPenaltyWeight / kFirstPenaltyWeight, t);
+      }
+  }
+};
+
+const double* penaltyWeights(int steps) {
+  static const PenaltyWeightTable table;
+  return table.weights[steps];
+}
+
+// Levenberg-Marquardt shift of the Newton matrix, in units of the mean squared edge length:
+// |x - y|^2 alone is only positive semi-definite in the four parameters (rank 3, or 2 for
+// parallel triangles). The shift changes the steps, not the fixed point (gradient zero).
+constexpr double kNewtonShift = 1e-10;
+
+}  // namespace
+
+SPACETREE_DISPATCH_BY_ISA
+void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyOptions& options,
+                                  PenaltyBatchResult& result) {
+  const int steps = options.newtonIterations;
+  if (steps < 1 || steps > kMaxNewtonIterations)
+    throw std::invalid_argument("penaltyTriangleDistanceBatch: newtonIterations out of range");
+  const double* weights = penaltyWeights(steps);
+
+  const auto& P = batch.coordinate;
+  // Geometry relative to the first triangle's vertex 0: a1, a2 edges of A, b0 offset of B,
+  // b1, b2 edges of B. With J = [a1 a2 -b1 -b2], x - y = J z - b0, and the objective's
+  // Hessian G = J^T J (10 distinct entries) and linear term k = -J^T b0 are constant.
+  alignas(64) double a1[3][kLanes], a2[3][kLanes], b0[3][kLanes], b1[3][kLanes], b2[3][kLanes];
+  alignas(64) double g11[kLanes], g12[kLanes], g13[kLanes], g14[kLanes], g22[kLanes],
+      g23[kLanes], g24[kLanes], g33[kLanes], g34[kLanes], g44[kLanes];
+  alignas(64) double k1[kLanes], k2[kLanes], k3[kLanes], k4[kLanes];
+  alignas(64) double u1[kLanes], u2[kLanes], v1[kLanes], v2[kLanes];
+
+#pragma omp simd
+  for (int l = 0; l < kLanes; ++l) {
+    // Axes written out: an inner loop over them is not unrolled at -O2 and blocks the
+    // vectoriser there.
+    a1[0][l] = P[0][1][0][l] - P[0][0][0][l];
+    a1[1][l] = P[0][1][1][l] - P[0][0][1][l];
+    a1[2][l] = P[0][1][2][l] - P[0][0][2][l];
+    a2[0][l] = P[0][2][0][l] - P[0][0][0][l];
+    a2[1][l] = P[0][2][1][l] - P[0][0][1][l];
+    a2[2][l] = P[0][2][2][l] - P[0][0][2][l];
+    b0[0][l] = P[1][0][0][l] - P[0][0][0][l];
+    b0[1][l] = P[1][0][1][l] - P[0][0][1][l];
+    b0[2][l] = P[1][0][2][l] - P[0][0][2][l];
+    b1[0][l] = P[1][1][0][l] - P[1][0][0][l];
+    b1[1][l] = P[1][1][1][l] - P[1][0][1][l];
+    b1[2][l] = P[1][1][2][l] - P[1][0][2][l];
+    b2[0][l] = P[1][2][0][l] - P[1][0][0][l];
+    b2[1][l] = P[1][2][1][l] - P[1][0][1][l];
+    b2[2][l] = P[1][2][2][l] - P[1][0][2][l];
+    const auto dot = [l](const double (&x)[3][kLanes], const double (&y)[3][kLanes]) {
+      return x[0][l] * y[0][l] + x[1][l] * y[1][l] + x[2][l] * y[2][l];
+    };
+    // Work in units of the mean squared edge length (the minimiser z does not change), so that
+    // the penalty weights are plain numbers and the block determinants below stay far from
+    // overflow whatever the particle size. The floor keeps a pair of points finite.
+    const double inverseScale =
+        1.0 / larger(0.25 * (dot(a1, a1) + dot(a2, a2) + dot(b1, b1) + dot(b2, b2)), 1e-300);
+    g11[l] = dot(a1, a1) * inverseScale;
+    g12[l] = dot(a1, a2) * inverseScale;
+    g13[l] = -dot(a1, b1) * inverseScale;
+    g14[l] = -dot(a1, b2) * inverseScale;
+    g22[l] = dot(a2, a2) * inverseScale;
+    g23[l] = -dot(a2, b1) * inverseScale;
+    g24[l] = -dot(a2, b2) * inverseScale;
+    g33[l] = dot(b1, b1) * inverseScale;
+    g34[l] = dot(b1, b2) * inverseScale;
+    g44[l] = dot(b2, b2) * inverseScale;
+    k1[l] = -dot(a1, b0) * inverseScale;
+    k2[l] = -dot(a2, b0) * inverseScale;
+    k3[l] = dot(b1, b0) * inverseScale;
+    k4[l] = dot(b2, b0) * inverseScale;
+    // Start at the centroids. (Projecting each centroid onto the other triangle was tried: it
+    // saves no Newton step on random or sphere-contact pairs.)
+    u1[l] = u2[l] = v1[l] = v2[l] = 1.0 / 3.0;
+  }
+
+  for (int step = 0; step < steps; ++step) {
+    const double rho = weights[step];
+#pragma omp simd
+    for (int l = 0; l < kLanes; ++l) {
+      const double z1 = u1[l], z2 = u2[l], z3 = v1[l], z4 = v2[l];
+      const double excessU = z1 + z2 - 1.0;
+      const double excessV = z3 + z4 - 1.0;
+      // Gradient of 1/2 |x - y|^2 + rho/2 sum_i max(0, g_i(z))^2 (constraints g_i <= 0).
+      const double r1 = g11[l] * z1 + g12[l] * z2 + g13[l] * z3 + g14[l] * z4 + k1[l] +
+                        rho * (smaller(z1, 0.0) + larger(excessU, 0.0));
+      const double r2 = g12[l] * z1 + g22[l] * z2 + g23[l] * z3 + g24[l] * z4 + k2[l] +
+                        rho * (smaller(z2, 0.0) + larger(excessU, 0.0));
+      const double r3 = g13[l] * z1 + g23[l] * z2 + g33[l] * z3 + g34[l] * z4 + k3[l] +
+                        rho * (smaller(z3, 0.0) + larger(excessV, 0.0));
+      const double r4 = g14[l] * z1 + g24[l] * z2 + g34[l] * z3 + g44[l] * z4 + k4[l] +
+                        rho * (smaller(z4, 0.0) + larger(excessV, 0.0));
+      // Generalised Hessian: each violated constraint adds rho grad g_i grad g_i^T.
+      const double pu = excessU > 0.0 ? rho : 0.0;
+      const double pv = excessV > 0.0 ? rho : 0.0;
+      const double h11 = g11[l] + (z1 < 0.0 ? rho : 0.0) + pu + kNewtonShift;
+      const double h22 = g22[l] + (z2 < 0.0 ? rho : 0.0) + pu + kNewtonShift;
+      const double h33 = g33[l] + (z3 < 0.0 ? rho : 0.0) + pv + kNewtonShift;
+      const double h44 = g44[l] + (z4 < 0.0 ? rho : 0.0) + pv + kNewtonShift;
+      const double h12 = g12[l] + pu;
+      const double h34 = g34[l] + pv;
+      const double h13 = g13[l], h14 = g14[l], h23 = g23[l], h24 = g24[l];
+      // H dz = r by 2x2 blocks (u, v), written with adjugates so that the step's dependency
+      // chain holds two divisions instead of the four of an LDL^T solve (the kernel is
+      // latency-bound: one batch is one or two registers):
+      //   S = det(Huu) Hvv - Huv^T adj(Huu) Huv   (det(Huu) times the Schur complement),
+      //   dz_v = adj(S) (det(Huu) r_v - Huv^T adj(Huu) r_u) / det(S),
+      //   dz_u = adj(Huu) (r_u - Huv dz_v) / det(Huu).
+      const double detUU = h11 * h22 - h12 * h12;
+      const double inverseDetUU = 1.0 / detUU;
+      const double m11 = h22 * h13 - h12 * h23, m12 = h22 * h14 - h12 * h24;
+      const double m21 = h11 * h23 - h12 * h13, m22 = h11 * h24 - h12 * h14;
+      const double s33 = detUU * h33 - (h13 * m11 + h23 * m21);
+      const double s34 = detUU * h34 - (h13 * m12 + h23 * m22);
+      const double s44 = detUU * h44 - (h14 * m12 + h24 * m22);
+      const double ar1 = h22 * r1 - h12 * r2, ar2 = h11 * r2 - h12 * r1;
+      const double rs3 = detUU * r3 - (h13 * ar1 + h23 * ar2);
+      const double rs4 = detUU * r4 - (h14 * ar1 + h24 * ar2);
+      const double inverseDetS = 1.0 / (s33 * s44 - s34 * s34);
+      const double dz3 = (s44 * rs3 - s34 * rs4) * inverseDetS;
+      const double dz4 = (s33 * rs4 - s34 * rs3) * inverseDetS;
+      const double t1 = r1 - h13 * dz3 - h14 * dz4, t2 = r2 - h23 * dz3 - h24 * dz4;
+      const double dz1 = (h22 * t1 - h12 * t2) * inverseDetUU;
+      const double dz2 = (h11 * t2 - h12 * t1) * inverseDetUU;
+      u1[l] = z1 - dz1;
+      u2[l] = z2 - dz2;
+      v1[l] = z3 - dz3;
+      v2[l] = z4 - dz4;
+    }
+  }
+
+  // Not `omp simd` here: it would privatise the small structs of the loop body into per-lane
+  // arrays and then fail on the scattered stores; the plain loop vectorises (-O2 and -O3).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC ivdep
+#endif
+  for (int l = 0; l < kLanes; ++l) {
+    // Admissible parameters: clamp to the quadrant, then scale back into the simplex.
+    double z1 = larger(u1[l], 0.0), z2 = larger(u2[l], 0.0);
+    double z3 = larger(v1[l], 0.0), z4 = larger(v2[l], 0.0);
+    const double shrinkU = 1.0 / larger(z1 + z2, 1.0);
+    const double shrinkV = 1.0 / larger(z3 + z4, 1.0);
+    z1 *= shrinkU;
+    z2 *= shrinkU;
+    z3 *= shrinkV;
+    z4 *= shrinkV;
+    const LocalPair pair{{a1[0][l], a1[1][l], a1[2][l]}, {a2[0][l], a2[1][l], a2[2][l]},
+                         {b0[0][l], b0[1][l], b0[2][l]}, {b1[0][l], b1[1][l], b1[2][l]},
+                         {b2[0][l], b2[1][l], b2[2][l]}};
+    const Vec3 x = pair.a1 * z1 + pair.a2 * z2;
+    const Vec3 y = pair.b0 + pair.b1 * z3 + pair.b2 * z4;
+    const Vec3 w = x - y;
+    const double distance = std::sqrt(dot(w, w));
+
+    // Separating-axis lower bounds (separationAlong). The direction of the two points, w, is
+    // exact at the minimiser, but for nearly touching pairs it is only as accurate as
+    // eps h / |w|, and so is its bound (error ~ eps h^2 / d). The contact features give
+    // directions that do not degrade: the face normals (vertex-face contact) and the cross
+    // product of the two edges the points lie on (edge-edge contact; the edge of a triangle is
+    // the one whose barycentric constraint has the smallest slack). Every bound is rigorous
+    // for its own direction, so the largest is taken.
+    const Vec3 edgeA = contactEdge(z1, z2, pair.a1, pair.a2);
+    const Vec3 edgeB = contactEdge(z3, z4, pair.b1, pair.b2);
+    const double lowerBound =
+        larger(larger(separationAlong(w, pair), separationAlong(cross(edgeA, edgeB), pair)),
+               larger(separationAlong(cross(pair.a1, pair.a2), pair),
+                      separationAlong(cross(pair.b1, pair.b2), pair)));
+    result.distance[l] = distance;
+    result.lowerBound[l] = larger(lowerBound, 0.0);
+
+    const double longestSquared =
+        larger(larger(larger(dot(pair.a1, pair.a1), dot(pair.a2, pair.a2)),
+                      larger(dot(pair.a2 - pair.a1, pair.a2 - pair.a1), dot(pair.b1, pair.b1))),
+               larger(dot(pair.b2, pair.b2), dot(pair.b2 - pair.b1, pair.b2 - pair.b1)));
+    result.lengthScale[l] = std::sqrt(longestSquared);
+    result.pointOnFirst[0][l] = P[0][0][0][l] + x.x;
+    result.pointOnFirst[1][l] = P[0][0][1][l] + x.y;
+    result.pointOnFirst[2][l] = P[0][0][2][l] + x.z;
+    result.pointOnSecond[0][l] = P[0][0][0][l] + y.x;
+    result.pointOnSecond[1][l] = P[0][0][1][l] + y.y;
+    result.pointOnSecond[2][l] = P[0][0][2][l] + y.z;
+  }
+}
+
+namespace {
+
+template <class PairSource>
+void penaltyDistancesOf(const PairSource& pairs, const PenaltyOptions& options,
+                        TriangleDistanceResult* results) {
+  TrianglePairBatch batch;
+  PenaltyBatchResult batchResult;
+  for (std::size_t begin = 0; begin < pairs.count(); begin += kTrianglePairBatchSize) {
+    const int lanes = pairs.loadBatch(batch, begin);
+    penaltyTriangleDistanceBatch(batch, options, batchResult);
+    for (int l = 0; l < lanes; ++l) results[begin + std::size_t(l)] = batchResult.lane(l);
+  }
+}
+
+}  // namespace
+
+void penaltyTriangleDistances(const Triangle* first, const Triangle* second, std::size_t count,
+                              const PenaltyOptions& options, TriangleDistanceResult* results) {
+  penaltyDistancesOf(ElementwisePairs{first, second, count}, options, results);
+}
+
+void penaltyTriangleDistances(const Triangle& first, const Triangle* second, std::size_t count,
+                              const PenaltyOptions& options, TriangleDistanceResult* results) {
+  penaltyDistancesOf(OneAgainstMany{&first, second, count}, options, results);
+}
+
+void penaltyTriangleDistancesOfAllPairs(const Triangle* first, std::size_t firstCount,
+                                        const Triangle* second, std::size_t secondCount,
+                                        const PenaltyOptions& options,
+                                        TriangleDistanceResult* results) {
+  penaltyDistancesOf(AllPairs{first, firstCount, second, secondCount}, options, results);
+}
+
+}  // namespace spacetree::geometry
