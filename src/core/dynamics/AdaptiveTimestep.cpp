@@ -1,0 +1,34 @@
+#include "dynamics/AdaptiveTimestep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace spacetree {
+
+TimestepDecision nextTimestep(double dt, const TimestepPolicy& policy, const TimestepLimits& limits,
+                              const TimestepVeto& veto) {
+  if (!(policy.creep >= 1.0)) throw std::invalid_argument("nextTimestep: creep factor must be >= 1");
+  if (!(dt > 0.0)) throw std::invalid_argument("nextTimestep: dt must be > 0");
+  double next = policy.creep * dt;
+  if (policy.dtMax > 0.0) next = std::min(next, policy.dtMax);
+  if (limits.maxSpeed > 0.0) {
+    if (limits.finestCell > 0.0) next = std::min(next, (limits.finestCell + limits.halo) / limits.maxSpeed);
+    // LIGGGHTS rebuilds its lists when a particle moved skin/2: never move further in one step
+    if (limits.skin > 0.0) next = std::min(next, 0.5 * limits.skin / limits.maxSpeed);
+  }
+  TimestepDecision decision;
+  if (veto.limit() < next) {
+    next = veto.limit();
+    decision.vetoed = true;
+  }
+  if (next < policy.dtMin) {
+    decision.floored = true;
+    next = policy.dtMin;
+  }
+  decision.dt = next;
+  return decision;
+}
+
+}  // namespace spacetree

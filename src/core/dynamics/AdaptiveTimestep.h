@@ -1,0 +1,33 @@
+// Adaptive global time step (paper §5.2): creeping growth dt <- min(C dt, caps), with caps
+// from the mesh and the fastest particle (no particle may cross more than a cell, nor leave
+// LIGGGHTS' skin between list rebuilds), a user ceiling, and the veto of critical approaches.
+#pragma once
+
+#include "dynamics/TimestepVeto.h"
+
+namespace spacetree {
+
+struct TimestepPolicy {
+  double creep = 1.1;    // growth factor C > 1 per step
+  double dtMin = 0.0;    // floor: a veto never cuts below it (reported when hit)
+  double dtMax = 0.0;    // ceiling (e.g. a fraction of the contact time); 0 = none
+};
+
+struct TimestepLimits {
+  double finestCell = 0.0;  // h_min of the grid in use (0 = unknown)
+  double halo = 0.0;        // 2 eps
+  double skin = 0.0;        // neighbour-list skin (0 = no list constraint)
+  double maxSpeed = 0.0;    // fastest particle
+};
+
+struct TimestepDecision {
+  double dt = 0.0;
+  bool vetoed = false;    // a critical approach cut the step
+  bool floored = false;   // the caps or the veto asked for less than dtMin
+};
+
+// The step after one of size dt.
+TimestepDecision nextTimestep(double dt, const TimestepPolicy& policy, const TimestepLimits& limits,
+                              const TimestepVeto& veto);
+
+}  // namespace spacetree

@@ -1,0 +1,172 @@
+// Adaptive global time step: creep, caps, veto of critical approaches, and a two-sphere
+// collision integrated with the policy against the closed-form spring-dashpot solution.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "dynamics/AdaptiveTimestep.h"
+#include "dynamics/TimestepVeto.h"
+
+using namespace spacetree;
+
+namespace {
+const double kOrigin[3] = {0.0, 0.0, 0.0};
+const double kRest[3] = {0.0, 0.0, 0.0};
+}  // namespace
+
+TEST(AdaptiveTimestep, CreepsByTheFactorUntilTheMeshCap) {
+  TimestepPolicy policy;
+  policy.creep = 1.1;
+  TimestepLimits limits;
+  limits.finestCell = 0.01;
+  limits.halo = 0.002;
+  limits.maxSpeed = 2.0;  // cap (0.01 + 0.002) / 2 = 6e-3
+  TimestepVeto noVeto(0.0, 0.8);
+  double dt = 1e-3;
+  int steps = 0;
+  while (dt < 6e-3 && steps < 100) {
+    const double next = nextTimestep(dt, policy, limits, noVeto).dt;
+    EXPECT_DOUBLE_EQ(next, std::min(1.1 * dt, 6e-3));
+    dt = next;
+    ++steps;
+  }
+  EXPECT_DOUBLE_EQ(dt, 6e-3);
+  EXPECT_EQ(steps, int(std::ceil(std::log(6.0) / std::log(1.1))));
+  EXPECT_DOUBLE_EQ(nextTimestep(dt, policy, limits, noVeto).dt, 6e-3);  // stays at the cap
+}
+
+TEST(AdaptiveTimestep, SkinAndCeilingCapTheStep) {
+  TimestepPolicy policy;
+  TimestepLimits limits;
+  limits.skin = 0.001;
+  limits.maxSpeed = 10.0;  // half the skin per step: 5e-5
+  TimestepVeto noVeto(0.0, 0.8);
+  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, noVeto).dt, 5e-5);
+  policy.dtMax = 1e-5;
+  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, noVeto).dt, 1e-5);
+  EXPECT_THROW(nextTimestep(0.0, policy, limits, noVeto), std::invalid_argument);
+  policy.creep = 0.5;
+  EXPECT_THROW(nextTimestep(1e-6, policy, limits, noVeto), std::invalid_argument);
+}
+
+TEST(TimestepVeto, CutsCriticalApproachesToASafeFractionOfTheGap) {
+  TimestepVeto veto(0.001, 0.8);
+  const double xj[3] = {0.03, 0.0, 0.0};      // gap 0.03 - 0.01 - 0.01 - 0.001 = 0.009
+  const double vj[3] = {-3.0, 0.0, 0.0};      // approaching at 3
+  veto.consider(kOrigin, kRest, 0.01, xj, vj, 0.01, 0.001);  // 3 * 0.001 < 0.009: not critical
+  EXPECT_EQ(veto.criticalPairs(), 0u);
+  EXPECT_TRUE(std::isinf(veto.limit()));
+  veto.consider(kOrigin, kRest, 0.01, xj, vj, 0.01, 0.01);   // 0.03 > 0.009: critical
+  EXPECT_EQ(veto.criticalPairs(), 1u);
+  EXPECT_NEAR(veto.limit(), 0.8 * 0.009 / 3.0, 1e-15);
+  const double faster[3] = {-9.0, 0.0, 0.0};
+  veto.consider(kOrigin, kRest, 0.01, xj, faster, 0.01, 0.01);
+  EXPECT_NEAR(veto.limit(), 0.8 * 0.009 / 9.0, 1e-15) << "the smallest safe step wins";
+
+  TimestepVeto other(0.001, 0.8);
+  const double receding[3] = {3.0, 0.0, 0.0};
+  other.consider(kOrigin, kRest, 0.01, xj, receding, 0.01, 1.0);
+  const double sideways[3] = {0.0, 5.0, 0.0};
+  other.consider(kOrigin, kRest, 0.01, xj, sideways, 0.01, 1.0);
+  const double touching[3] = {0.0205, 0.0, 0.0};  // inside the halo already
+  other.consider(kOrigin, kRest, 0.01, touching, vj, 0.01, 1.0);
+  EXPECT_EQ(other.criticalPairs(), 0u);
+  // projection on the centre line: an oblique approach counts with its normal component
+  const double oblique[3] = {0.03, 0.04, 0.0};      // distance 0.05, gap 0.029
+  const double obliqueV[3] = {-3.0, -4.0, 7.0};     // normal closing speed 5
+  other.consider(kOrigin, kRest, 0.01, oblique, obliqueV, 0.01, 1.0);
+  EXPECT_NEAR(other.limit(), 0.8 * 0.029 / 5.0, 1e-15);
+  EXPECT_THROW(TimestepVeto(-1.0, 0.5), std::invalid_argument);
+  EXPECT_THROW(TimestepVeto(0.0, 1.5), std::invalid_argument);
+}
+
+TEST(AdaptiveTimestep, VetoOverridesCreepAndIsFloored) {
+  TimestepPolicy policy;
+  policy.dtMin = 1e-6;
+  TimestepLimits limits;
+  TimestepVeto veto(0.0, 0.5);
+  const double xj[3] = {2.0 + 1e-6, 0.0, 0.0};  // gap 1e-6
+  const double vj[3] = {-10.0, 0.0, 0.0};
+  veto.consider(kOrigin, kRest, 1.0, xj, vj, 1.0, 1e-3);
+  const TimestepDecision d = nextTimestep(1e-3, policy, limits, veto);
+  EXPECT_TRUE(d.vetoed);
+  EXPECT_TRUE(d.floored);  // 0.5 * 1e-6 / 10 = 5e-8 < dtMin
+  EXPECT_DOUBLE_EQ(d.dt, 1e-6);
+}
+
+namespace {
+// Two equal spheres head-on with a linear spring-dashpot, velocity Verlet, the time step
+// chosen by the policy before every step (veto on the current state).
+struct CollisionResult {
+  double restitution, contactTime, maxOverlapAtContactStart, energyRatio;
+  int steps;
+};
+
+CollisionResult collide(double k, double c, double dtMaxFraction, double dtMin) {
+  const double m = 1.0, r = 0.01, speed = 1.0, mEff = 0.5 * m;
+  const double gamma = c / (2.0 * mEff), omega = std::sqrt(k / mEff - gamma * gamma);
+  const double tc = M_PI / omega;
+  TimestepPolicy policy;
+  policy.creep = 1.1;
+  policy.dtMin = dtMin;
+  policy.dtMax = dtMaxFraction * tc;
+  TimestepLimits limits;
+  limits.finestCell = 2.2 * r;
+  limits.maxSpeed = speed;
+  double x1 = 0.0, x2 = 0.1, v1 = speed, v2 = -speed, dt = policy.dtMax;
+  auto force = [&](double a, double b, double va, double vb) {  // on sphere 2
+    const double overlap = 2 * r - (b - a);
+    return overlap > 0.0 ? k * overlap + c * (va - vb) : 0.0;
+  };
+  double f = force(x1, x2, v1, v2), t = 0.0, contactStart = -1.0, contactEnd = -1.0;
+  CollisionResult res{0, 0, 0, 0, 0};
+  const double e0 = 0.5 * m * (v1 * v1 + v2 * v2);
+  for (int step = 0; step < 2000000 && contactEnd < 0.0; ++step) {
+    TimestepVeto veto(0.0, 0.8);
+    const double p1[3] = {x1, 0, 0}, p2[3] = {x2, 0, 0}, u1[3] = {v1, 0, 0}, u2[3] = {v2, 0, 0};
+    veto.consider(p1, u1, r, p2, u2, r, dt);
+    dt = nextTimestep(dt, policy, limits, veto).dt;
+    const double wasOverlap = 2 * r - (x2 - x1);
+    x1 += v1 * dt - 0.5 * f / m * dt * dt;
+    x2 += v2 * dt + 0.5 * f / m * dt * dt;
+    // velocity-dependent damping: predict, then correct once
+    const double v1p = v1 - f / m * dt, v2p = v2 + f / m * dt;
+    const double fn = force(x1, x2, v1p, v2p);
+    v1 -= 0.5 * (f + fn) / m * dt;
+    v2 += 0.5 * (f + fn) / m * dt;
+    f = fn;
+    t += dt;
+    res.steps = step + 1;
+    const double overlap = 2 * r - (x2 - x1);
+    // crossing times interpolated within the step, so the measurement is not quantised by dt
+    const double crossing = t - dt * overlap / (overlap - wasOverlap);
+    if (overlap > 0.0 && wasOverlap <= 0.0 && contactStart < 0.0) {
+      contactStart = crossing;
+      res.maxOverlapAtContactStart = overlap;
+    }
+    if (contactStart >= 0.0 && overlap <= 0.0) contactEnd = crossing;
+  }
+  res.restitution = (v2 - v1) / (2 * speed);
+  res.contactTime = contactEnd - contactStart;
+  res.energyRatio = 0.5 * m * (v1 * v1 + v2 * v2) / e0;
+  return res;
+}
+}  // namespace
+
+TEST(AdaptiveTimestep, TwoSphereCollisionMatchesTheClosedFormSpringDashpot) {
+  const double k = 1e5, c = 40.0, mEff = 0.5;
+  const double gamma = c / (2 * mEff), omega = std::sqrt(k / mEff - gamma * gamma);
+  const double e = std::exp(-M_PI * gamma / omega), tc = M_PI / omega;
+  const CollisionResult res = collide(k, c, 1.0 / 50.0, 1e-7);
+  EXPECT_NEAR(res.restitution, e, 0.01 * e);
+  EXPECT_NEAR(res.contactTime, tc, 0.01 * tc);
+  // the veto keeps the first overlap to what the closing speed covers in one floored step
+  EXPECT_LE(res.maxOverlapAtContactStart, 2.0 * 1e-7 * 1.0 + 1e-15);
+}
+
+TEST(AdaptiveTimestep, ElasticCollisionConservesEnergy) {
+  const CollisionResult res = collide(1e5, 0.0, 1.0 / 2000.0, 1e-8);
+  EXPECT_NEAR(res.energyRatio, 1.0, 1e-6);
+  EXPECT_NEAR(res.restitution, 1.0, 1e-3);
+}
