@@ -26,14 +26,14 @@ TEST(AdaptiveTimestep, CreepsByTheFactorUntilTheMeshCap) {
   double dt = 1e-3;
   int steps = 0;
   while (dt < 6e-3 && steps < 100) {
-    const double next = nextTimestep(dt, policy, limits, noVeto).dt;
+    const double next = nextTimestep(dt, policy, limits, noVeto.limit()).dt;
     EXPECT_DOUBLE_EQ(next, std::min(1.1 * dt, 6e-3));
     dt = next;
     ++steps;
   }
   EXPECT_DOUBLE_EQ(dt, 6e-3);
   EXPECT_EQ(steps, int(std::ceil(std::log(6.0) / std::log(1.1))));
-  EXPECT_DOUBLE_EQ(nextTimestep(dt, policy, limits, noVeto).dt, 6e-3);  // stays at the cap
+  EXPECT_DOUBLE_EQ(nextTimestep(dt, policy, limits, noVeto.limit()).dt, 6e-3);  // stays at the cap
 }
 
 TEST(AdaptiveTimestep, SkinAndCeilingCapTheStep) {
@@ -42,12 +42,12 @@ TEST(AdaptiveTimestep, SkinAndCeilingCapTheStep) {
   limits.skin = 0.001;
   limits.maxSpeed = 10.0;  // half the skin per step: 5e-5
   TimestepVeto noVeto(0.0, 0.8);
-  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, noVeto).dt, 5e-5);
+  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, noVeto.limit()).dt, 5e-5);
   policy.dtMax = 1e-5;
-  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, noVeto).dt, 1e-5);
-  EXPECT_THROW(nextTimestep(0.0, policy, limits, noVeto), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, noVeto.limit()).dt, 1e-5);
+  EXPECT_THROW(nextTimestep(0.0, policy, limits, noVeto.limit()), std::invalid_argument);
   policy.creep = 0.5;
-  EXPECT_THROW(nextTimestep(1e-6, policy, limits, noVeto), std::invalid_argument);
+  EXPECT_THROW(nextTimestep(1e-6, policy, limits, noVeto.limit()), std::invalid_argument);
 }
 
 TEST(TimestepVeto, CutsCriticalApproachesToASafeFractionOfTheGap) {
@@ -89,7 +89,7 @@ TEST(AdaptiveTimestep, VetoOverridesCreepAndIsFloored) {
   const double xj[3] = {2.0 + 1e-6, 0.0, 0.0};  // gap 1e-6
   const double vj[3] = {-10.0, 0.0, 0.0};
   veto.consider(kOrigin, kRest, 1.0, xj, vj, 1.0, 1e-3);
-  const TimestepDecision d = nextTimestep(1e-3, policy, limits, veto);
+  const TimestepDecision d = nextTimestep(1e-3, policy, limits, veto.limit());
   EXPECT_TRUE(d.vetoed);
   EXPECT_TRUE(d.floored);  // 0.5 * 1e-6 / 10 = 5e-8 < dtMin
   EXPECT_DOUBLE_EQ(d.dt, 1e-6);
@@ -126,7 +126,7 @@ CollisionResult collide(double k, double c, double dtMaxFraction, double dtMin) 
     TimestepVeto veto(0.0, 0.8);
     const double p1[3] = {x1, 0, 0}, p2[3] = {x2, 0, 0}, u1[3] = {v1, 0, 0}, u2[3] = {v2, 0, 0};
     veto.consider(p1, u1, r, p2, u2, r, dt);
-    dt = nextTimestep(dt, policy, limits, veto).dt;
+    dt = nextTimestep(dt, policy, limits, veto.limit()).dt;
     const double wasOverlap = 2 * r - (x2 - x1);
     x1 += v1 * dt - 0.5 * f / m * dt * dt;
     x2 += v2 * dt + 0.5 * f / m * dt * dt;

@@ -8,7 +8,7 @@
 namespace spacetree {
 
 TimestepDecision nextTimestep(double dt, const TimestepPolicy& policy, const TimestepLimits& limits,
-                              const TimestepVeto& veto) {
+                              double vetoLimit) {
   if (!(policy.creep >= 1.0)) throw std::invalid_argument("nextTimestep: creep factor must be >= 1");
   if (!(dt > 0.0)) throw std::invalid_argument("nextTimestep: dt must be > 0");
   double next = policy.creep * dt;
@@ -19,8 +19,8 @@ TimestepDecision nextTimestep(double dt, const TimestepPolicy& policy, const Tim
     if (limits.skin > 0.0) next = std::min(next, 0.5 * limits.skin / limits.maxSpeed);
   }
   TimestepDecision decision;
-  if (veto.limit() < next) {
-    next = veto.limit();
+  if (vetoLimit < next) {
+    next = vetoLimit;
     decision.vetoed = true;
   }
   if (next < policy.dtMin) {

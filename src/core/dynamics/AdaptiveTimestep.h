@@ -3,7 +3,6 @@
 // LIGGGHTS' skin between list rebuilds), a user ceiling, and the veto of critical approaches.
 #pragma once
 
-#include "dynamics/TimestepVeto.h"
 
 namespace spacetree {
 
@@ -26,8 +25,9 @@ struct TimestepDecision {
   bool floored = false;   // the caps or the veto asked for less than dtMin
 };
 
-// The step after one of size dt.
+// The step after one of size dt; vetoLimit is the largest step the critical approaches allow
+// (TimestepVeto::limit(), reduced over all ranks; +inf when none).
 TimestepDecision nextTimestep(double dt, const TimestepPolicy& policy, const TimestepLimits& limits,
-                              const TimestepVeto& veto);
+                              double vetoLimit);
 
 }  // namespace spacetree
