@@ -158,11 +158,23 @@ std::vector<int> parseList(const char* text) {
   return v;
 }
 
-std::string cpuLevel() {
+// The instruction set the kernels run with: chosen at run time among the clones, or fixed at
+// compile time when built with -DSPACETREE_NO_ISA_DISPATCH (for per-ISA comparisons).
+std::string isaInUse() {
+#if defined(SPACETREE_NO_ISA_DISPATCH)
+#if defined(__AVX512F__)
+  return "avx512 (fixed)";
+#elif defined(__AVX2__) && defined(__FMA__)
+  return "avx2 (fixed)";
+#else
+  return "sse2 (fixed)";
+#endif
+#else
   __builtin_cpu_init();
   if (__builtin_cpu_supports("avx512f")) return "avx512";
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "avx2";
   return "sse2";
+#endif
 }
 
 }  // namespace
@@ -194,7 +206,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cannot write %s\n", settings.out.c_str());
     return 1;
   }
-  const std::string isa = cpuLevel();
+  const std::string isa = isaInUse();
   csv << "triangles_per_particle,method,newton_iterations,pairs_per_scene,ns_per_pair,"
          "pairs_per_second,fallback_fraction,contacts_per_scene,decisions_equal_exact,"
          "speedup_vs_exact,isa\n";

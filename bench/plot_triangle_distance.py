@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""Plots bench/results/triangle_distance.csv (written by bench_triangle_distance).
+
+Left: triangle-pair checks per second on one core versus triangles per particle, for the
+exact, penalty and hybrid methods. Right: the hybrid's speed-up over the exact method and the
+fraction of pairs it hands to the exact method.
+
+Usage: /usr/bin/python3 bench/plot_triangle_distance.py [CSV] [PNG]
+"""
+import csv
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main():
+    source = sys.argv[1] if len(sys.argv) > 1 else "bench/results/triangle_distance.csv"
+    target = sys.argv[2] if len(sys.argv) > 2 else source.rsplit(".", 1)[0] + ".png"
+    series = defaultdict(list)  # (method, iterations) -> rows
+    isa = set()
+    with open(source, newline="") as f:
+        for row in csv.DictReader(f):
+            series[(row["method"], int(row["newton_iterations"]))].append(row)
+            isa.add(row["isa"])
+
+    def column(rows, name):
+        return [float(r[name]) for r in rows]
+
+    fig, (speed, hybrid) = plt.subplots(1, 2, figsize=(12, 4.8))
+    fallback = hybrid.twinx()
+    styles = {"exact": ("k", "o"), "penalty": ("tab:blue", "s"), "hybrid": ("tab:red", "^")}
+    for (method, iterations), rows in sorted(series.items()):
+        rows.sort(key=lambda r: int(r["triangles_per_particle"]))
+        color, marker = styles.get(method, ("gray", "x"))
+        label = method if method == "exact" else f"{method}, {iterations} Newton steps"
+        dashes = "-" if iterations in (0, 8) else "--"
+        speed.plot(column(rows, "triangles_per_particle"), column(rows, "pairs_per_second"),
+                   dashes, color=color, marker=marker, label=label)
+        if method == "hybrid":
+            hybrid.plot(column(rows, "triangles_per_particle"), column(rows, "speedup_vs_exact"),
+                        dashes, color=color, marker=marker,
+                        label=f"speed-up over exact, {iterations} steps")
+            fallback.plot(column(rows, "triangles_per_particle"),
+                          [100 * v for v in column(rows, "fallback_fraction")], dashes,
+                          color="tab:green", marker=marker, alpha=0.8,
+                          label=f"fallback, {iterations} steps")
+
+    speed.set_xscale("log")
+    speed.set_yscale("log")
+    speed.set_xlabel("triangles per particle")
+    speed.set_ylabel("triangle-pair checks per second (one core)")
+    speed.set_title("Two spheres at contact distance, all triangle pairs")
+    speed.grid(True, which="both", alpha=0.3)
+    speed.legend(fontsize=8)
+
+    hybrid.set_xscale("log")
+    hybrid.axhline(4.0, color="gray", lw=0.8, ls=":")
+    hybrid.set_xlabel("triangles per particle")
+    hybrid.set_ylabel("hybrid speed-up over exact")
+    hybrid.set_title(f"Hybrid (ISA: {', '.join(sorted(isa))})")
+    hybrid.grid(True, which="both", alpha=0.3)
+    fallback.set_ylabel("pairs falling back to exact [%]", color="tab:green")
+    fallback.set_yscale("log")
+    lines, labels = hybrid.get_legend_handles_labels()
+    more_lines, more_labels = fallback.get_legend_handles_labels()
+    hybrid.legend(lines + more_lines, labels + more_labels, fontsize=8, loc="center right")
+
+    fig.tight_layout()
+    fig.savefig(target, dpi=120)
+    print(f"wrote {target}")
+
+
+if __name__ == "__main__":
+    main()
