@@ -41,25 +41,14 @@ int Spacetree::hostLevel(double required) const {
   return l;
 }
 
-void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive) {
-  nActive_ = nActive;
-  levels_.clear();
-  stats_ = SpacetreeStatistics{};
-  particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
-  sx_.clear();
-  sy_.clear();
-  sz_.clear();
-  sr_.clear();
-  sortedId_.clear();
-  if (n <= 0) return;
-
-  // Bounding box and the smallest and biggest mesh sizes the particles ask for.
-  double lo[3], hi[3];
+void Spacetree::validate(const double (*x)[3], const double* radius, int n, double lo[3],
+                         double hi[3], double& minRadius, double& maxRadius) {
   for (int d = 0; d < 3; ++d) {
     lo[d] = std::numeric_limits<double>::infinity();
     hi[d] = -lo[d];
   }
-  double minRadius = std::numeric_limits<double>::infinity(), maxRadius = 0.0;
+  minRadius = std::numeric_limits<double>::infinity();
+  maxRadius = 0.0;
   for (int i = 0; i < n; ++i) {
     for (int d = 0; d < 3; ++d) {
       if (!std::isfinite(x[i][d]))
@@ -74,6 +63,34 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
     minRadius = std::min(minRadius, radius[i]);
     maxRadius = std::max(maxRadius, radius[i]);
   }
+}
+
+void Spacetree::resetLevels(const std::array<double, 3>& origin, double rootSize, int depth) {
+  rootSize_ = rootSize;
+  origin_ = origin;
+  levels_.resize(std::size_t(depth) + 1);
+  stats_.levels.resize(levels_.size());
+  for (int l = 0; l <= depth; ++l) {
+    levels_[l].meshSize = rootSize / double(kPowersOfThree[l]);
+    stats_.levels[l].meshSize = levels_[l].meshSize;
+  }
+}
+
+void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive) {
+  nActive_ = nActive;
+  levels_.clear();
+  stats_ = SpacetreeStatistics{};
+  particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
+  sx_.clear();
+  sy_.clear();
+  sz_.clear();
+  sr_.clear();
+  sortedId_.clear();
+  if (n <= 0) return;
+
+  // Bounding box and the smallest and biggest mesh sizes the particles ask for.
+  double lo[3], hi[3], minRadius, maxRadius;
+  validate(x, radius, n, lo, hi, minRadius, maxRadius);
   const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   const double coarsestNeed = requiredMeshSize(maxRadius);
   double finestNeed = requiredMeshSize(minRadius);
@@ -90,16 +107,37 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
     ++depth;
   }
   if (root < rootNeed) root = rootNeed;  // depth capped: finest level coarser than ideal
-  rootSize_ = root;
-  for (int d = 0; d < 3; ++d) origin_[d] = lo[d];
+  resetLevels({lo[0], lo[1], lo[2]}, root, depth);
+  placeParticles(x, radius, n, nullptr);
+}
 
-  levels_.resize(std::size_t(depth) + 1);
-  stats_.levels.resize(levels_.size());
-  for (int l = 0; l <= depth; ++l) {
-    levels_[l].meshSize = root / double(kPowersOfThree[l]);
-    stats_.levels[l].meshSize = levels_[l].meshSize;
-  }
+void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive,
+                      const GridGeometry& geometry, const int* hostLevelOf) {
+  nActive_ = nActive;
+  levels_.clear();
+  stats_ = SpacetreeStatistics{};
+  particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
+  sx_.clear();
+  sy_.clear();
+  sz_.clear();
+  sr_.clear();
+  sortedId_.clear();
+  if (geometry.depth < 0 || geometry.depth > options_.maxLevel)
+    throw std::invalid_argument("spacetree: geometry depth must be in [0, maxLevel]");
+  if (!(geometry.rootSize > 0.0) || !std::isfinite(geometry.rootSize))
+    throw std::invalid_argument("spacetree: geometry root size must be finite and > 0");
+  if (n <= 0) return;
+  double lo[3], hi[3], minRadius, maxRadius;
+  validate(x, radius, n, lo, hi, minRadius, maxRadius);
+  for (int d = 0; d < 3; ++d)
+    if (lo[d] < geometry.origin[d] || hi[d] > geometry.origin[d] + geometry.rootSize)
+      throw std::invalid_argument("spacetree: a particle centre lies outside the given cube");
+  resetLevels(geometry.origin, geometry.rootSize, geometry.depth);
+  placeParticles(x, radius, n, hostLevelOf);
+}
 
+void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n,
+                               const int* hostLevelOf) {
   // Drop every particle to its level and key it by its nearest vertex there.
   sortKeys_.resize(std::size_t(n));
   double lastRadius = -1.0;  // radii repeat (monodisperse species): skip the log
@@ -109,7 +147,8 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
       lastRadius = radius[i];
       lastLevel = hostLevel(requiredMeshSize(radius[i]));
     }
-    const int l = lastLevel;
+    // A caller's level may be coarser than the finest admissible one, never finer.
+    const int l = hostLevelOf ? std::clamp(hostLevelOf[i], 0, lastLevel) : lastLevel;
     particleLevel_[i] = l;
     const double inv = 1.0 / levels_[l].meshSize;
     const std::int64_t vi = std::int64_t((x[i][0] - origin_[0]) * inv + 0.5);

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tree/CoarseNeighbourhoods.h"
+#include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
 #include "tree/SpacetreeStatistics.h"
 #include "tree/VertexKey.h"
@@ -40,6 +41,14 @@ class Spacetree {
   // inactive particles (ghosts) is never reported. Throws std::invalid_argument for a
   // non-finite position or radius, or a negative radius.
   void build(const double (*x)[3], const double* radius, int n, int nActive);
+
+  // Same, on a given cube with the host level of every particle chosen by the caller (an
+  // adaptive grid). The sweep is exact for any level at or coarser than the finest one a
+  // particle fits, so a too fine hostLevel[i] is clamped to that; hostLevel == nullptr means
+  // the finest admissible level. Throws std::invalid_argument as build() does, and for a
+  // particle centre outside the cube or a geometry with depth outside [0, maxLevel].
+  void build(const double (*x)[3], const double* radius, int n, int nActive,
+             const GridGeometry& geometry, const int* hostLevel);
 
   // Calls visit(i, j) (original indices, i != j) once for every unordered candidate pair with
   // at least one active particle. The candidates are a superset of the pairs with
@@ -103,6 +112,11 @@ class Spacetree {
   template <class PairFunction>
   void sweep(PairFunction&& onPair);
   int hostLevel(double required) const;
+  // Checks positions and radii; returns the bounding box and the radius range.
+  static void validate(const double (*x)[3], const double* radius, int n, double lo[3],
+                       double hi[3], double& minRadius, double& maxRadius);
+  void resetLevels(const std::array<double, 3>& origin, double rootSize, int depth);
+  void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
   void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
                                    std::int64_t ak, std::vector<std::int32_t>& out) const;
   bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
