@@ -5,9 +5,9 @@
 #include "atom.h"
 #include "error.h"
 #include "force.h"
+#include "granular_list_copy.h"
 #include "memory.h"
 #include "neigh_list.h"
-#include "neigh_request.h"
 #include "neighbor.h"
 #include "update.h"
 
@@ -32,13 +32,7 @@ void ComputeNeighLocal::init()
   if (force->pair == NULL)
     error->all(FLERR,"Compute neigh/local requires a granular pair style");
 
-  // an occasional granular request becomes a copy of the pair style's list
-  int irequest = neighbor->request((void *) this);
-  neighbor->requests[irequest]->pair = 0;
-  neighbor->requests[irequest]->compute = 1;
-  neighbor->requests[irequest]->half = 0;
-  neighbor->requests[irequest]->gran = 1;
-  neighbor->requests[irequest]->occasional = 1;
+  request_granular_list_copy(neighbor,this,GranularListUser::Compute);
 }
 
 void ComputeNeighLocal::init_list(int, NeighList *ptr)

@@ -10,9 +10,9 @@
 #include "comm.h"
 #include "error.h"
 #include "force.h"
+#include "granular_list_copy.h"
 #include "modify.h"
 #include "neigh_list.h"
-#include "neigh_request.h"
 #include "neigh_spacetree.h"
 #include "neighbor.h"
 #include "pair.h"
@@ -106,13 +106,7 @@ void FixAdaptTimestep::init()
   if (veto_on) {
     if (force->pair == NULL)
       error->all(FLERR,"Fix adapt/timestep veto needs a granular pair style (or use veto no)");
-    // an occasional granular request becomes a copy of the pair style's list
-    int irequest = neighbor->request((void *) this);
-    neighbor->requests[irequest]->pair = 0;
-    neighbor->requests[irequest]->fix = 1;
-    neighbor->requests[irequest]->half = 0;
-    neighbor->requests[irequest]->gran = 1;
-    neighbor->requests[irequest]->occasional = 1;
+    request_granular_list_copy(neighbor,this,GranularListUser::Fix);
   }
 }
 
