@@ -1,0 +1,420 @@
+#include "tree/AdaptiveGrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace spacetree {
+
+namespace {
+// Heat markers sum their children's markers (up to 343 per vertex per level): saturate
+// instead of overflowing; anything this hot vetoes coarsening anyway.
+constexpr std::int64_t kMaxHeat = std::int64_t(1) << 40;
+
+std::uint64_t key(std::int64_t i, std::int64_t j, std::int64_t k) { return packVertexKey(i, j, k); }
+}  // namespace
+
+AdaptiveGrid::AdaptiveGrid(AdaptiveGridOptions options)
+    : options_(options), pairSearch_(SpacetreeOptions{options.epsilon, options.maxLevel}) {
+  if (options.shock <= 0) throw std::invalid_argument("adaptive grid: shock must be > 0");
+  if (options.coarseningThreshold < 0)
+    throw std::invalid_argument("adaptive grid: coarsening threshold must be >= 0");
+  if (options.coarseningThreshold >= options.shock)
+    throw std::invalid_argument(
+        "adaptive grid: coarsening threshold must be below the refinement shock, else fresh "
+        "refinements are coarsened at once");
+  if (!(options.padding >= 0.0) || !std::isfinite(options.padding))
+    throw std::invalid_argument("adaptive grid: padding must be finite and >= 0");
+}
+
+double AdaptiveGrid::meshSize(int level) const {
+  return geometry_.rootSize / double(kPowersOfThree[level]);  // as Spacetree computes it
+}
+
+int AdaptiveGrid::finestFit(double required) const {
+  int l = 0;
+  while (l < geometry_.depth && meshSize(l + 1) >= required) ++l;
+  return l;
+}
+
+AdaptiveGrid::Index3 AdaptiveGrid::cellOf(int level, const double p[3]) const {
+  const double inv = 1.0 / meshSize(level);
+  const std::int64_t last = cellsPerAxis(level) - 1;
+  auto c = [&](int d) {
+    return std::clamp(std::int64_t(std::floor((p[d] - geometry_.origin[d]) * inv)), std::int64_t(0), last);
+  };
+  return {c(0), c(1), c(2)};
+}
+
+AdaptiveGrid::Index3 AdaptiveGrid::nearestVertex(int level, const double p[3]) const {
+  // Same rounding as Spacetree::placeParticles, so both agree on the host vertex.
+  const double inv = 1.0 / meshSize(level);
+  auto v = [&](int d) { return std::int64_t((p[d] - geometry_.origin[d]) * inv + 0.5); };
+  return {v(0), v(1), v(2)};
+}
+
+bool AdaptiveGrid::isRefined(int level, std::int64_t i, std::int64_t j, std::int64_t k) const {
+  if (level < regularDepth_) return true;
+  if (level >= geometry_.depth) return false;
+  return refined_[level].count(key(i, j, k)) != 0;
+}
+
+bool AdaptiveGrid::cellExists(int level, std::int64_t i, std::int64_t j, std::int64_t k) const {
+  const std::int64_t n = cellsPerAxis(level);
+  if (i < 0 || j < 0 || k < 0 || i >= n || j >= n || k >= n) return false;
+  return level == 0 || isRefined(level - 1, i / 3, j / 3, k / 3);
+}
+
+bool AdaptiveGrid::isHanging(int level, std::int64_t i, std::int64_t j, std::int64_t k) const {
+  // Cells outside the cube do not count: the padding keeps particles off its boundary.
+  const std::int64_t n = cellsPerAxis(level);
+  for (std::int64_t a = i - 1; a <= i; ++a)
+    for (std::int64_t b = j - 1; b <= j; ++b)
+      for (std::int64_t c = k - 1; c <= k; ++c) {
+        if (a < 0 || b < 0 || c < 0 || a >= n || b >= n || c >= n) continue;
+        if (!cellExists(level, a, b, c)) return true;
+      }
+  return false;
+}
+
+bool AdaptiveGrid::isRefinedAt(int level, const double p[3]) const {
+  if (!haveGeometry_ || level < 0 || level > geometry_.depth) return false;
+  const Index3 c = cellOf(level, p);
+  return cellExists(level, c.i, c.j, c.k) && isRefined(level, c.i, c.j, c.k);
+}
+
+int AdaptiveGrid::computeHost(const double p[3], int admissible) const {
+  int l = 0;
+  while (l < admissible) {
+    const Index3 c = cellOf(l, p);
+    if (!isRefined(l, c.i, c.j, c.k)) break;
+    ++l;
+  }
+  while (l > 0) {
+    const Index3 v = nearestVertex(l, p);
+    if (!isHanging(l, v.i, v.j, v.k)) break;
+    --l;  // lift: the vertex does not exist as a full vertex on this level
+  }
+  return l;
+}
+
+void AdaptiveGrid::rehostAll(const double (*x)[3], int n) {
+  for (int i = 0; i < n; ++i) host_[i] = computeHost(x[i], admissible_[i]);
+}
+
+bool AdaptiveGrid::needsNewGeometry(const double (*x)[3], const double* radius, int n) const {
+  if (!haveGeometry_) return true;
+  double minNeed = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    for (int d = 0; d < 3; ++d)
+      if (!(x[i][d] >= geometry_.origin[d] && x[i][d] <= geometry_.origin[d] + geometry_.rootSize))
+        return true;
+    const double need = pairSearch_.requiredMeshSize(radius[i]);
+    if (need > geometry_.rootSize) return true;
+    minNeed = std::min(minNeed, need);
+  }
+  // A smaller particle than the finest level was made for: go deeper.
+  return geometry_.depth < options_.maxLevel && minNeed > 0.0 && meshSize(geometry_.depth) / 3.0 >= minNeed;
+}
+
+void AdaptiveGrid::chooseGeometry(const double (*x)[3], const double* radius, int n) {
+  double lo[3], hi[3];
+  double minNeed = std::numeric_limits<double>::infinity(), maxNeed = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::numeric_limits<double>::infinity();
+    hi[d] = -lo[d];
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int d = 0; d < 3; ++d) {
+      if (!std::isfinite(x[i][d]))
+        throw std::invalid_argument("adaptive grid: a particle has a non-finite position");
+      lo[d] = std::min(lo[d], x[i][d]);
+      hi[d] = std::max(hi[d], x[i][d]);
+    }
+    if (!(radius[i] >= 0.0) || !std::isfinite(radius[i]))
+      throw std::invalid_argument("adaptive grid: a particle has a negative or non-finite radius");
+    const double need = pairSearch_.requiredMeshSize(radius[i]);
+    minNeed = std::min(minNeed, need);
+    maxNeed = std::max(maxNeed, need);
+  }
+  // Padded cube: particles may move a while before it has to be re-chosen (which resets the
+  // refinement). Levels as in Spacetree::build: the finest one fits the smallest particle.
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const double margin = options_.padding * std::max(extent, minNeed > 0.0 ? minNeed : 0.0);
+  const double rootNeed = std::max(extent + 2.0 * margin, maxNeed);
+  double finestNeed = minNeed;
+  if (!(finestNeed > 0.0)) finestNeed = rootNeed > 0.0 ? rootNeed : 1.0;
+  int depth = 0;
+  double root = finestNeed;
+  while (root < rootNeed && depth < options_.maxLevel) {
+    root *= 3.0;
+    ++depth;
+  }
+  if (root < rootNeed) root = rootNeed;
+  if (!(root > 0.0)) root = 1.0;
+  geometry_.rootSize = root;
+  geometry_.depth = depth;
+  for (int d = 0; d < 3; ++d) geometry_.origin[d] = 0.5 * (lo[d] + hi[d]) - 0.5 * root;
+  haveGeometry_ = true;
+  refined_.assign(std::size_t(depth) + 1, CellSet{});
+  heat_.assign(std::size_t(depth) + 1, Markers{});
+  ++stats_.geometryResets;
+}
+
+bool AdaptiveGrid::refineCell(int level, std::int64_t i, std::int64_t j, std::int64_t k) {
+  if (level >= geometry_.depth || isRefined(level, i, j, k) || !cellExists(level, i, j, k)) return false;
+  // Vertices of the new patch that did not exist as full vertices before get the heat shock.
+  std::vector<std::uint64_t> created;
+  if (options_.type == GridType::Reluctant)
+    for (std::int64_t a = 3 * i; a <= 3 * i + 3; ++a)
+      for (std::int64_t b = 3 * j; b <= 3 * j + 3; ++b)
+        for (std::int64_t c = 3 * k; c <= 3 * k + 3; ++c)
+          if (isHanging(level + 1, a, b, c)) created.push_back(key(a, b, c));
+  refined_[level].insert(key(i, j, k));
+  for (std::uint64_t v : created) {
+    std::int64_t& h = heat_[level + 1][v];
+    h = std::min(kMaxHeat, h + options_.shock);
+  }
+  ++stats_.refinements;
+  return true;
+}
+
+bool AdaptiveGrid::refineAroundVertex(int level, const Index3& v) {
+  bool any = false;
+  for (std::int64_t a = v.i - 1; a <= v.i; ++a)
+    for (std::int64_t b = v.j - 1; b <= v.j; ++b)
+      for (std::int64_t c = v.k - 1; c <= v.k; ++c) any |= refineCell(level, a, b, c);
+  return any;
+}
+
+void AdaptiveGrid::refineNaively(const double (*x)[3], int n) {
+  // Refine the 2^d cells around the host vertex while a drop would sieve the particle to the
+  // next finer level; those cells hold every cell its next nearest vertex needs, so each
+  // round drops it by one level (the paper cascades within one top-down sweep, too).
+  for (int i = 0; i < n; ++i) {
+    while (host_[i] < admissible_[i]) {
+      const int l = host_[i];
+      refineAroundVertex(l, nearestVertex(l, x[i]));
+      host_[i] = computeHost(x[i], admissible_[i]);
+      if (host_[i] <= l) break;  // defensive: no progress
+    }
+  }
+}
+
+void AdaptiveGrid::refineReluctantly(const double (*x)[3], const double (*v)[3], const double* radius,
+                                     int n) {
+  // Candidate pairs: bounding spheres (+ eps each) overlap and the particles approach.
+  closePairs_.clear();
+  pairSearch_.build(x, radius, n, n, geometry_, host_.data());
+  pairSearch_.forEachPairWithin([&](int a, int b, double) {
+    if (v) {
+      double approach = 0.0;
+      for (int d = 0; d < 3; ++d) approach += (x[b][d] - x[a][d]) * (v[b][d] - v[a][d]);
+      if (!(approach < 0.0)) return;
+    }
+    closePairs_.emplace_back(a, b);
+  });
+  const double sqrt3 = std::sqrt(3.0);
+  // Refine the cell containing particle p if p would drop and q is held by the cell's 2^d
+  // vertices (real there, or virtual: coarser and within the link radius of a vertex). The
+  // neighbours p's next finer vertex needs are refined with it, so that p really drops.
+  // Repeated while drops happen: one sweep may cascade over several levels.
+  for (int round = 0; round <= geometry_.depth; ++round) {
+    bool refined = false;
+    for (const auto& pair : closePairs_) {
+      for (int side = 0; side < 2; ++side) {
+        const int p = side ? pair.second : pair.first, q = side ? pair.first : pair.second;
+        const int l = host_[p];
+        if (l >= admissible_[p] || host_[q] > l) continue;
+        const Index3 c = cellOf(l, x[p]);
+        bool held = false;
+        if (host_[q] == l) {
+          const Index3 w = nearestVertex(l, x[q]);
+          held = w.i >= c.i && w.i <= c.i + 1 && w.j >= c.j && w.j <= c.j + 1 && w.k >= c.k && w.k <= c.k + 1;
+        } else {
+          const double h = meshSize(l);
+          const double reach = radius[q] + 2.0 * options_.epsilon + sqrt3 * h;
+          for (int corner = 0; corner < 8 && !held; ++corner) {
+            const double vx = geometry_.origin[0] + double(c.i + (corner & 1)) * h;
+            const double vy = geometry_.origin[1] + double(c.j + ((corner >> 1) & 1)) * h;
+            const double vz = geometry_.origin[2] + double(c.k + ((corner >> 2) & 1)) * h;
+            const double dx = x[q][0] - vx, dy = x[q][1] - vy, dz = x[q][2] - vz;
+            held = dx * dx + dy * dy + dz * dz < reach * reach;
+          }
+        }
+        if (!held) continue;
+        const Index3 w = nearestVertex(l + 1, x[p]);
+        for (std::int64_t a = w.i - 1; a <= w.i; ++a)
+          for (std::int64_t b = w.j - 1; b <= w.j; ++b)
+            for (std::int64_t e = w.k - 1; e <= w.k; ++e)
+              if (a >= 0 && b >= 0 && e >= 0) refined |= refineCell(l, a / 3, b / 3, e / 3);
+      }
+    }
+    if (!refined) break;
+    rehostAll(x, n);
+  }
+}
+
+template <class F>
+void AdaptiveGrid::forEachParentVertex(int level, std::int64_t i, std::int64_t j, std::int64_t k,
+                                       F&& f) const {
+  // Child w of vertex u: w lies in the closure of the 2^d cells around u, i.e. |w - 3u| <= 3.
+  const std::int64_t n = cellsPerAxis(level);
+  auto lo = [](std::int64_t w) { return std::max<std::int64_t>(0, (w - 3 + 2) / 3); };  // ceil((w-3)/3), w >= 0
+  auto hi = [n](std::int64_t w) { return std::min<std::int64_t>(n, (w + 3) / 3); };
+  for (std::int64_t a = lo(i); a <= hi(i); ++a)
+    for (std::int64_t b = lo(j); b <= hi(j); ++b)
+      for (std::int64_t c = lo(k); c <= hi(k); ++c) f(key(a, b, c));
+}
+
+void AdaptiveGrid::updateHeatMarkers(const double (*x)[3], int n) {
+  // Annealing (reluctant): halve, add the particles of the vertex, add the children's markers.
+  // Only levels below the start-off grid can be coarsened, so only they keep markers.
+  std::vector<Markers> next(heat_.size());
+  for (int i = 0; i < n; ++i) {
+    const int l = host_[i];
+    if (l <= regularDepth_) continue;
+    const Index3 v = nearestVertex(l, x[i]);
+    ++next[l][key(v.i, v.j, v.k)];
+  }
+  for (int l = geometry_.depth; l > regularDepth_; --l) {
+    for (const auto& [k, m] : heat_[l])
+      if (m / 2 > 0) next[l][k] += m / 2;
+    if (l < geometry_.depth)
+      for (const auto& [k, m] : next[l + 1]) {
+        const VertexIndex w = unpackVertexKey(k);
+        forEachParentVertex(l, w.i, w.j, w.k, [&](std::uint64_t u) {
+          std::int64_t& h = next[l][u];
+          h = std::min(kMaxHeat, h + m);
+        });
+      }
+  }
+  heat_.swap(next);
+}
+
+void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
+  const int depth = geometry_.depth;
+  if (depth <= regularDepth_) return;
+  // Analysed tree grammar, bottom-up: a vertex is *not* a coarsening candidate if it is hot
+  // (adaptive: holds a particle; reluctant: marker >= threshold) or one of its children is not
+  // a candidate.
+  std::vector<std::unordered_set<std::uint64_t>> keep(std::size_t(depth) + 1);
+  if (options_.type == GridType::Reluctant) {
+    for (int l = regularDepth_ + 1; l <= depth; ++l)
+      for (const auto& [k, m] : heat_[l])
+        if (m >= options_.coarseningThreshold) keep[l].insert(k);
+  } else {
+    for (int i = 0; i < n; ++i) {
+      const int l = host_[i];
+      if (l <= regularDepth_) continue;
+      const Index3 v = nearestVertex(l, x[i]);
+      keep[l].insert(key(v.i, v.j, v.k));
+    }
+  }
+  for (int l = depth - 1; l > regularDepth_; --l)
+    for (std::uint64_t k : keep[l + 1]) {
+      const VertexIndex w = unpackVertexKey(k);
+      forEachParentVertex(l, w.i, w.j, w.k, [&](std::uint64_t u) { keep[l].insert(u); });
+    }
+  // Finest first, so whole empty subtrees collapse in one update: remove the 3^d children of
+  // a refined cell if none of them is refined and all their non-hanging vertices are
+  // candidates. Decisions of one level are taken before its removals change hanging status.
+  std::vector<std::uint64_t> removals;
+  for (int l = depth - 1; l >= regularDepth_; --l) {
+    removals.clear();
+    for (std::uint64_t cellKey : refined_[l]) {
+      const VertexIndex c = unpackVertexKey(cellKey);
+      bool removable = true;
+      for (int a = 0; a < 3 && removable; ++a)
+        for (int b = 0; b < 3 && removable; ++b)
+          for (int e = 0; e < 3 && removable; ++e)
+            removable = !isRefined(l + 1, 3 * c.i + a, 3 * c.j + b, 3 * c.k + e);
+      for (std::int64_t a = 3 * c.i; a <= 3 * c.i + 3 && removable; ++a)
+        for (std::int64_t b = 3 * c.j; b <= 3 * c.j + 3 && removable; ++b)
+          for (std::int64_t e = 3 * c.k; e <= 3 * c.k + 3 && removable; ++e)
+            if (keep[l + 1].count(key(a, b, e)) && !isHanging(l + 1, a, b, e)) removable = false;
+      if (removable) removals.push_back(cellKey);
+    }
+    for (std::uint64_t cellKey : removals) refined_[l].erase(cellKey);
+    stats_.coarsenings += removals.size();
+  }
+}
+
+void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const double* radius, int n) {
+  stats_.refinements = 0;
+  stats_.coarsenings = 0;
+  n = std::max(n, 0);
+  host_.assign(std::size_t(n), 0);
+  admissible_.resize(std::size_t(n));
+  if (n == 0) {
+    collectStatistics();
+    return;
+  }
+  if (needsNewGeometry(x, radius, n)) chooseGeometry(x, radius, n);
+  int coarsestFit = geometry_.depth, finestFitAll = 0;
+  for (int i = 0; i < n; ++i) {
+    admissible_[i] = finestFit(pairSearch_.requiredMeshSize(radius[i]));
+    coarsestFit = std::min(coarsestFit, admissible_[i]);
+    finestFitAll = std::max(finestFitAll, admissible_[i]);
+  }
+  regularDepth_ = options_.type == GridType::Regular ? finestFitAll : coarsestFit;
+  // Stored refinements now inside the everywhere-refined levels are redundant.
+  for (int l = 0; l < regularDepth_ && l < int(refined_.size()); ++l) refined_[l].clear();
+
+  rehostAll(x, n);  // particles moved: drops and lifts on the current grid
+  switch (options_.type) {
+    case GridType::Regular: break;
+    case GridType::Adaptive: refineNaively(x, n); break;
+    case GridType::Reluctant:
+      updateHeatMarkers(x, n);
+      refineReluctantly(x, v, radius, n);
+      break;
+  }
+  rehostAll(x, n);
+  if (options_.type != GridType::Regular) {
+    coarsen(x, n);
+    rehostAll(x, n);  // particles on removed vertices lift
+  }
+  collectStatistics();
+}
+
+void AdaptiveGrid::buildSpacetree(Spacetree& tree, const double (*x)[3], const double* radius, int n,
+                                  int nActive) const {
+  tree.build(x, radius, n, nActive, geometry_, host_.empty() ? nullptr : host_.data());
+}
+
+void AdaptiveGrid::collectStatistics() {
+  const int depth = haveGeometry_ ? geometry_.depth : 0;
+  stats_.levels.assign(std::size_t(depth) + 1, AdaptiveLevelStatistics{});
+  stats_.cells = 0;
+  stats_.regularDepth = regularDepth_;
+  stats_.deepestLevel = 0;
+  if (!haveGeometry_) return;
+  for (int l = 0; l <= depth; ++l) {
+    AdaptiveLevelStatistics& s = stats_.levels[l];
+    s.meshSize = meshSize(l);
+    if (l <= regularDepth_) {
+      const std::uint64_t c = std::uint64_t(cellsPerAxis(l));
+      s.cells = c * c * c;
+      s.vertices = (c + 1) * (c + 1) * (c + 1);
+    } else {
+      s.cells = 27 * refined_[l - 1].size();
+      std::unordered_set<std::uint64_t> seen;
+      for (std::uint64_t cellKey : refined_[l - 1]) {
+        const VertexIndex c = unpackVertexKey(cellKey);
+        for (std::int64_t a = 3 * c.i; a <= 3 * c.i + 3; ++a)
+          for (std::int64_t b = 3 * c.j; b <= 3 * c.j + 3; ++b)
+            for (std::int64_t e = 3 * c.k; e <= 3 * c.k + 3; ++e)
+              if (seen.insert(key(a, b, e)).second && !isHanging(l, a, b, e)) ++s.vertices;
+      }
+    }
+    stats_.cells += s.cells;
+  }
+  for (int h : host_) {
+    ++stats_.levels[h].realParticles;
+    stats_.deepestLevel = std::max(stats_.deepestLevel, h);
+  }
+}
+
+}  // namespace spacetree

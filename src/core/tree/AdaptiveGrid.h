@@ -1,0 +1,108 @@
+// Persistent dynamically adaptive spacetree grid (paper §5.1). It keeps the refined cells of
+// every level from step to step and decides on which level each particle is hosted; the
+// Spacetree sweep then runs on those levels (Spacetree::build with geometry() and
+// hostLevels()). The sweep is exact for any host level at or coarser than the finest one a
+// particle fits, so adaptivity only trades cells against comparisons, never correctness.
+//
+// Host level: descend from the root while the cell containing the particle centre is refined
+// and the next level still fits the particle (h >= 2(r + eps)); then lift while the nearest
+// vertex on that level is hanging (not all 2^d adjacent cells exist).
+//
+// Levels above regularDepth are refined everywhere and never stored: for Regular that is the
+// finest level any particle fits (today's placement); for Adaptive and Reluctant it is the
+// paper's start-off grid, the finest level the biggest particle fits. Below it refined cells
+// are kept sparsely in one hash set per level.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+#include "tree/AdaptiveGridStatistics.h"
+#include "tree/GridGeometry.h"
+#include "tree/GridType.h"
+#include "tree/Spacetree.h"
+#include "tree/VertexKey.h"
+
+namespace spacetree {
+
+struct AdaptiveGridOptions {
+  GridType type = GridType::Adaptive;
+  double epsilon = 0.0;             // halo, as in SpacetreeOptions
+  int maxLevel = kMaxSpacetreeLevel;
+  int shock = 8;                    // heat added to vertices created by a refinement (reluctant)
+  int coarseningThreshold = 4;      // a cooler vertex may be coarsened (reluctant); < shock
+  double padding = 0.25;            // cube margin per side, relative to the particle extent
+};
+
+class AdaptiveGrid {
+ public:
+  // Throws std::invalid_argument for inconsistent options (threshold >= shock, ...).
+  explicit AdaptiveGrid(AdaptiveGridOptions options = {});
+
+  // One step: re-host the moved particles, refine, coarsen, re-host. Velocities drive the
+  // reluctant approach test (v may be nullptr: every close pair then counts as approaching).
+  // The cube is re-chosen (grid reset to the start-off grid) when a particle leaves it or no
+  // longer fits the root cell.
+  void update(const double (*x)[3], const double (*v)[3], const double* radius, int n);
+
+  // Builds `tree` on this grid's cube with this grid's host levels (tree options must use the
+  // same epsilon). Particles must be those of the last update().
+  void buildSpacetree(Spacetree& tree, const double (*x)[3], const double* radius, int n,
+                      int nActive) const;
+
+  const AdaptiveGridOptions& options() const { return options_; }
+  const GridGeometry& geometry() const { return geometry_; }
+  const std::vector<int>& hostLevels() const { return host_; }
+  int hostLevel(int particle) const { return host_[particle]; }
+  int admissibleLevel(int particle) const { return admissible_[particle]; }
+  double meshSize(int level) const;
+  // Whether the cell of `level` containing point p is refined.
+  bool isRefinedAt(int level, const double p[3]) const;
+  const AdaptiveGridStatistics& statistics() const { return stats_; }
+
+ private:
+  using CellSet = std::unordered_set<std::uint64_t>;
+  using Markers = std::unordered_map<std::uint64_t, std::int64_t>;
+  struct Index3 {
+    std::int64_t i, j, k;
+  };
+
+  bool needsNewGeometry(const double (*x)[3], const double* radius, int n) const;
+  void chooseGeometry(const double (*x)[3], const double* radius, int n);
+  int finestFit(double required) const;
+  std::int64_t cellsPerAxis(int level) const { return kPowersOfThree[level]; }
+  Index3 cellOf(int level, const double p[3]) const;
+  Index3 nearestVertex(int level, const double p[3]) const;
+  bool isRefined(int level, std::int64_t i, std::int64_t j, std::int64_t k) const;
+  bool cellExists(int level, std::int64_t i, std::int64_t j, std::int64_t k) const;
+  bool isHanging(int level, std::int64_t i, std::int64_t j, std::int64_t k) const;
+  int computeHost(const double p[3], int admissible) const;
+  void rehostAll(const double (*x)[3], int n);
+  bool refineCell(int level, std::int64_t i, std::int64_t j, std::int64_t k);
+  bool refineAroundVertex(int level, const Index3& v);
+  void refineNaively(const double (*x)[3], int n);
+  void refineReluctantly(const double (*x)[3], const double (*v)[3], const double* radius, int n);
+  void updateHeatMarkers(const double (*x)[3], int n);
+  void coarsen(const double (*x)[3], int n);
+  void collectStatistics();
+  // Vertices of `level` whose 7^3 children on level + 1 contain child vertex (i, j, k).
+  template <class F>
+  void forEachParentVertex(int level, std::int64_t i, std::int64_t j, std::int64_t k, F&& f) const;
+
+  AdaptiveGridOptions options_;
+  Spacetree pairSearch_;  // reluctant approach test: close pairs on the current levels
+  GridGeometry geometry_;
+  bool haveGeometry_ = false;
+  int regularDepth_ = 0;
+  std::vector<CellSet> refined_;  // per level, cells (not above regularDepth_) that are refined
+  std::vector<Markers> heat_;     // per level, reluctant heat markers of vertices
+  std::vector<int> host_, admissible_;
+  std::vector<double> required_;
+  std::vector<std::pair<int, int>> closePairs_;
+  AdaptiveGridStatistics stats_;
+};
+
+}  // namespace spacetree

@@ -1,0 +1,27 @@
+// Counters an AdaptiveGrid keeps about its last update() (virtual links per level come from
+// the Spacetree sweep, which owns them).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace spacetree {
+
+struct AdaptiveLevelStatistics {
+  double meshSize = 0.0;
+  std::uint64_t cells = 0;          // cells of this level that exist (children of refined cells)
+  std::uint64_t vertices = 0;       // non-hanging vertices: all 8 adjacent cells exist
+  std::uint64_t realParticles = 0;  // particles hosted on this level
+};
+
+struct AdaptiveGridStatistics {
+  std::vector<AdaptiveLevelStatistics> levels;  // index = level, 0 = root
+  std::uint64_t cells = 0;                      // sum over the levels
+  std::uint64_t refinements = 0;                // cells refined in the last update
+  std::uint64_t coarsenings = 0;                // patches of 27 cells removed in the last update
+  int deepestLevel = 0;                         // finest level hosting a particle
+  int regularDepth = 0;                         // levels above it are refined everywhere
+  std::uint64_t geometryResets = 0;             // cube re-chosen (particles left it), cumulative
+};
+
+}  // namespace spacetree

@@ -1,0 +1,234 @@
+// The adaptive grid only moves particles between levels; the Spacetree sweep on its levels
+// must still list exactly the brute-force pairs, whatever the grid refines or coarsens.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "tree/AdaptiveGrid.h"
+#include "tree/Spacetree.h"
+
+using spacetree::AdaptiveGrid;
+using spacetree::AdaptiveGridOptions;
+using spacetree::GridType;
+using spacetree::Spacetree;
+using spacetree::SpacetreeOptions;
+
+namespace {
+
+using PairSet = std::set<std::pair<int, int>>;
+
+struct Scene {
+  std::vector<std::array<double, 3>> x, v;
+  std::vector<double> r;
+  void add(std::array<double, 3> px, std::array<double, 3> pv, double pr) {
+    x.push_back(px);
+    v.push_back(pv);
+    r.push_back(pr);
+  }
+  int size() const { return int(r.size()); }
+  const double (*pos() const)[3] { return reinterpret_cast<const double(*)[3]>(x.data()); }
+  const double (*vel() const)[3] { return reinterpret_cast<const double(*)[3]>(v.data()); }
+  void move(double dt) {
+    for (int i = 0; i < size(); ++i)
+      for (int d = 0; d < 3; ++d) x[i][d] += dt * v[i][d];
+  }
+};
+
+bool isPair(const Scene& s, int i, int j, double eps) {
+  double d2 = 0.0;
+  for (int d = 0; d < 3; ++d) d2 += (s.x[i][d] - s.x[j][d]) * (s.x[i][d] - s.x[j][d]);
+  const double cut = s.r[i] + s.r[j] + 2.0 * eps;
+  return d2 <= cut * cut;
+}
+
+PairSet bruteForce(const Scene& s, double eps) {
+  PairSet pairs;
+  for (int i = 0; i < s.size(); ++i)
+    for (int j = i + 1; j < s.size(); ++j)
+      if (isPair(s, i, j, eps)) pairs.insert({i, j});
+  return pairs;
+}
+
+PairSet gridPairs(const AdaptiveGrid& grid, Spacetree& tree, const Scene& s) {
+  grid.buildSpacetree(tree, s.pos(), s.r.data(), s.size(), s.size());
+  PairSet pairs;
+  bool duplicate = false;
+  tree.forEachPairWithin([&](int i, int j, double) {
+    if (!pairs.insert(std::minmax(i, j)).second) duplicate = true;
+  });
+  EXPECT_FALSE(duplicate);
+  return pairs;
+}
+
+// Small particles plus a few big ones (radius ratio `ratio`), random velocities.
+Scene polydisperse(int nSmall, int nBig, double rSmall, double ratio, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0), w(-1.0, 1.0);
+  Scene s;
+  for (int i = 0; i < nSmall + nBig; ++i) {
+    const double r = i < nSmall ? rSmall * (1.0 + 0.5 * u(rng)) : rSmall * ratio;
+    s.add({u(rng), u(rng), u(rng)}, {w(rng), w(rng), w(rng)}, r);
+  }
+  return s;
+}
+
+void expectAdmissible(const AdaptiveGrid& grid, const Scene& s, double eps) {
+  for (int i = 0; i < s.size(); ++i) {
+    const int l = grid.hostLevel(i);
+    ASSERT_GE(grid.meshSize(l), 2.0 * (s.r[i] + eps)) << "particle " << i << " on level " << l;
+    ASSERT_LE(l, grid.admissibleLevel(i));
+  }
+}
+
+}  // namespace
+
+TEST(AdaptiveGrid, AllGridTypesMatchBruteForceWhileParticlesMove) {
+  const double eps = 0.001;
+  for (GridType type : {GridType::Regular, GridType::Adaptive, GridType::Reluctant})
+    for (double ratio : {10.0, 100.0}) {
+      SCOPED_TRACE(std::string(spacetree::gridTypeName(type)) + " ratio " + std::to_string(ratio));
+      Scene s = polydisperse(1200, 4, 0.005, ratio / 1.5, 11);
+      AdaptiveGridOptions options;
+      options.type = type;
+      options.epsilon = eps;
+      AdaptiveGrid grid(options);
+      Spacetree tree(SpacetreeOptions{eps});
+      std::uint64_t refinements = 0, coarsenings = 0, pairsSeen = 0;
+      for (int step = 0; step < 25; ++step) {
+        grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+        expectAdmissible(grid, s, eps);
+        const PairSet expected = bruteForce(s, eps);
+        ASSERT_EQ(gridPairs(grid, tree, s), expected) << "step " << step;
+        pairsSeen += expected.size();
+        if (step > 0) {
+          refinements += grid.statistics().refinements;
+          coarsenings += grid.statistics().coarsenings;
+        }
+        s.move(0.004);
+      }
+      EXPECT_GT(pairsSeen, 100u);
+      if (type != GridType::Regular) {
+        EXPECT_GT(refinements, 0u) << "the grid should follow the particles";
+        EXPECT_GT(coarsenings, 0u) << "the grid should coarsen behind the particles";
+      }
+    }
+}
+
+TEST(AdaptiveGrid, RegularHostsEveryParticleOnItsFinestAdmissibleLevel) {
+  const Scene s = polydisperse(500, 5, 0.003, 30.0, 12);
+  AdaptiveGridOptions options;
+  options.type = GridType::Regular;
+  AdaptiveGrid grid(options);
+  grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+  for (int i = 0; i < s.size(); ++i) ASSERT_EQ(grid.hostLevel(i), grid.admissibleLevel(i));
+  const auto& st = grid.statistics();
+  EXPECT_EQ(st.refinements + st.coarsenings, 0u);
+  const std::uint64_t perAxis = std::uint64_t(std::llround(std::pow(3.0, st.regularDepth)));
+  EXPECT_EQ(st.levels[st.regularDepth].cells, perAxis * perAxis * perAxis);
+}
+
+TEST(AdaptiveGrid, AdaptiveEndsWithParticlesOnTheirAdmissibleLevels) {
+  const double eps = 0.0005;
+  Scene s = polydisperse(300, 3, 0.002, 100.0, 13);
+  AdaptiveGridOptions options;
+  options.epsilon = eps;
+  AdaptiveGrid grid(options);
+  for (int sweep = 0; sweep < 3; ++sweep) grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+  for (int i = 0; i < s.size(); ++i) EXPECT_EQ(grid.hostLevel(i), grid.admissibleLevel(i)) << i;
+  // Standing still, the grid is in equilibrium.
+  EXPECT_EQ(grid.statistics().refinements, 0u);
+  EXPECT_EQ(grid.statistics().coarsenings, 0u);
+  std::uint64_t real = 0;
+  for (const auto& level : grid.statistics().levels) real += level.realParticles;
+  EXPECT_EQ(real, std::uint64_t(s.size()));
+}
+
+TEST(AdaptiveGrid, ReluctantUsesFewerCellsAndStillFindsTheImpact) {
+  // Paper §7.1: two spheres approaching along the diagonal of the unit cube.
+  auto scene = [] {
+    Scene s;
+    s.add({0.2, 0.2, 0.2}, {0.1, 0.1, 0.1}, 0.01);
+    s.add({0.8, 0.8, 0.8}, {-0.1, -0.1, -0.1}, 0.1);
+    return s;
+  };
+  const double dt = 0.01;
+  std::uint64_t cells[2] = {0, 0};
+  int contactStep[2] = {-1, -1};
+  for (int g = 0; g < 2; ++g) {
+    AdaptiveGridOptions options;
+    options.type = g == 0 ? GridType::Adaptive : GridType::Reluctant;
+    AdaptiveGrid grid(options);
+    Spacetree tree;
+    Scene s = scene();
+    for (int step = 0; step < 300; ++step) {
+      grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+      expectAdmissible(grid, s, 0.0);
+      const PairSet found = gridPairs(grid, tree, s);
+      ASSERT_EQ(found, bruteForce(s, 0.0)) << "step " << step;
+      if (!found.empty() && contactStep[g] < 0) contactStep[g] = step;
+      cells[g] += grid.statistics().cells;
+      s.move(dt);
+    }
+  }
+  EXPECT_GT(contactStep[0], 0);
+  EXPECT_EQ(contactStep[0], contactStep[1]) << "both grids must see the impact at once";
+  EXPECT_LT(cells[1], cells[0]) << "reluctant should traverse fewer cells over the run";
+}
+
+TEST(AdaptiveGrid, CoarsensOnceParticlesLeaveARegion) {
+  for (GridType type : {GridType::Adaptive, GridType::Reluctant}) {
+    SCOPED_TRACE(spacetree::gridTypeName(type));
+    // A cloud of small particles drifting across the box, a big still one fixes the cube.
+    Scene s;
+    std::mt19937_64 rng(14);
+    std::uniform_real_distribution<double> u(0.0, 0.08), w(-0.3, 0.3);
+    for (int i = 0; i < 200; ++i)  // jitter: the reluctant grid refines only for approaching pairs
+      s.add({0.1 + u(rng), 0.1 + u(rng), 0.1 + u(rng)}, {0.6 + w(rng), 0.6 + w(rng), 0.6 + w(rng)}, 0.004);
+    s.add({0.0, 0.0, 0.0}, {0, 0, 0}, 0.05);
+    s.add({1.0, 1.0, 1.0}, {0, 0, 0}, 0.05);
+    AdaptiveGridOptions options;
+    options.type = type;
+    AdaptiveGrid grid(options);
+    Spacetree tree;
+    const double start[3] = {0.14, 0.14, 0.14};
+    std::uint64_t coarsenings = 0;
+    bool refinedAtStart = false;
+    for (int step = 0; step < 100; ++step) {
+      grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+      if (step < 3)
+        for (int l = grid.statistics().regularDepth; l < grid.geometry().depth; ++l)
+          refinedAtStart |= grid.isRefinedAt(l, start);
+      coarsenings += grid.statistics().coarsenings;
+      ASSERT_EQ(gridPairs(grid, tree, s), bruteForce(s, 0.0)) << "step " << step;
+      s.move(0.01);
+    }
+    if (type == GridType::Adaptive) { EXPECT_TRUE(refinedAtStart); }
+    EXPECT_GT(coarsenings, 0u);
+    EXPECT_EQ(grid.statistics().geometryResets, 1u) << "coarsened, not reset";
+    for (int l = grid.statistics().regularDepth; l < grid.geometry().depth; ++l)
+      EXPECT_FALSE(grid.isRefinedAt(l, start)) << "level " << l << " still refined where the cloud was";
+  }
+}
+
+TEST(AdaptiveGrid, BadOptionsThrow) {
+  AdaptiveGridOptions options;
+  options.shock = 4;
+  options.coarseningThreshold = 4;
+  EXPECT_THROW(AdaptiveGrid{options}, std::invalid_argument);
+  options.coarseningThreshold = 5;
+  EXPECT_THROW(AdaptiveGrid{options}, std::invalid_argument);
+  options = AdaptiveGridOptions{};
+  options.shock = 0;
+  options.coarseningThreshold = -1;
+  EXPECT_THROW(AdaptiveGrid{options}, std::invalid_argument);
+  EXPECT_NO_THROW(AdaptiveGrid{AdaptiveGridOptions{}});
+  EXPECT_THROW(spacetree::parseGridType("bogus"), std::invalid_argument);
+  EXPECT_EQ(spacetree::parseGridType("reluctant"), GridType::Reluctant);
+}
