@@ -161,6 +161,7 @@ TEST(AdaptiveGrid, ReluctantUsesFewerCellsAndStillFindsTheImpact) {
   const double dt = 0.01;
   std::uint64_t cells[2] = {0, 0};
   int contactStep[2] = {-1, -1};
+  int smallLevelBeforeContact[2] = {0, 0}, smallLevelAfterContact[2] = {0, 0};
   for (int g = 0; g < 2; ++g) {
     AdaptiveGridOptions options;
     options.type = g == 0 ? GridType::Adaptive : GridType::Reluctant;
@@ -174,12 +175,18 @@ TEST(AdaptiveGrid, ReluctantUsesFewerCellsAndStillFindsTheImpact) {
       ASSERT_EQ(found, bruteForce(s, 0.0)) << "step " << step;
       if (!found.empty() && contactStep[g] < 0) contactStep[g] = step;
       cells[g] += grid.statistics().cells;
+      int& deepest = contactStep[g] < 0 ? smallLevelBeforeContact[g] : smallLevelAfterContact[g];
+      deepest = std::max(deepest, grid.hostLevel(0));
       s.move(dt);
     }
   }
   EXPECT_GT(contactStep[0], 0);
   EXPECT_EQ(contactStep[0], contactStep[1]) << "both grids must see the impact at once";
   EXPECT_LT(cells[1], cells[0]) << "reluctant should traverse fewer cells over the run";
+  // Adaptive drops the small sphere at once; reluctant keeps it on the start-off grid until
+  // the approaching spheres touch, then refines so that it drops.
+  EXPECT_GT(smallLevelBeforeContact[0], smallLevelBeforeContact[1]);
+  EXPECT_GT(smallLevelAfterContact[1], smallLevelBeforeContact[1]);
 }
 
 TEST(AdaptiveGrid, CoarsensOnceParticlesLeaveARegion) {
@@ -231,4 +238,28 @@ TEST(AdaptiveGrid, BadOptionsThrow) {
   EXPECT_NO_THROW(AdaptiveGrid{AdaptiveGridOptions{}});
   EXPECT_THROW(spacetree::parseGridType("bogus"), std::invalid_argument);
   EXPECT_EQ(spacetree::parseGridType("reluctant"), GridType::Reluctant);
+}
+
+TEST(AdaptiveGrid, SpacetreeOnAGivenCubeClampsHostLevelsAndStaysExact) {
+  const double eps = 0.001;
+  const Scene s = polydisperse(800, 4, 0.004, 20.0, 15);
+  spacetree::GridGeometry geometry;
+  geometry.origin = {-0.5, -0.5, -0.5};
+  geometry.rootSize = 2.0;
+  geometry.depth = 6;
+  Spacetree tree(SpacetreeOptions{eps});
+  for (int requested : {0, 2, 6}) {
+    SCOPED_TRACE(requested);
+    const std::vector<int> levels(std::size_t(s.size()), requested);
+    tree.build(s.pos(), s.r.data(), s.size(), s.size(), geometry, levels.data());
+    PairSet found;
+    tree.forEachPairWithin([&](int i, int j, double) { found.insert(std::minmax(i, j)); });
+    EXPECT_EQ(found, bruteForce(s, eps));
+    for (int i = 0; i < s.size(); ++i) {
+      ASSERT_GE(tree.meshSize(tree.levelOf(i)), 2.0 * (s.r[i] + eps));
+      ASSERT_LE(tree.levelOf(i), requested);
+    }
+  }
+  geometry.origin = {0.5, 0.5, 0.5};  // cube misses most particles
+  EXPECT_THROW(tree.build(s.pos(), s.r.data(), s.size(), s.size(), geometry, nullptr), std::invalid_argument);
 }
