@@ -299,12 +299,19 @@ void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
   // Analysed tree grammar, bottom-up: a vertex is *not* a coarsening candidate if it is hot
   // (adaptive: holds a particle; reluctant: marker >= threshold) or one of its children is not
   // a candidate.
-  std::vector<std::unordered_set<std::uint64_t>> keep(std::size_t(depth) + 1);
+  // Open-addressing sets (plus key lists) per level: the parent propagation inserts up to
+  // 27 keys per kept vertex, which dominated the update with node-based hash sets.
+  std::vector<KeySet> keep(std::size_t(depth) + 1);
   if (options_.type == GridType::Reluctant) {
-    for (int l = regularDepth_ + 1; l <= depth; ++l)
+    for (int l = regularDepth_ + 1; l <= depth; ++l) {
+      keep[l].reset(heat_[l].size());
       for (const auto& [k, m] : heat_[l])
         if (m >= options_.coarseningThreshold) keep[l].insert(k);
+    }
   } else {
+    std::vector<std::size_t> perLevel(std::size_t(depth) + 1, 0);
+    for (int i = 0; i < n; ++i) ++perLevel[host_[i]];
+    for (int l = regularDepth_ + 1; l <= depth; ++l) keep[l].reset(perLevel[l]);
     for (int i = 0; i < n; ++i) {
       const int l = host_[i];
       if (l <= regularDepth_) continue;
@@ -312,11 +319,14 @@ void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
       keep[l].insert(key(v.i, v.j, v.k));
     }
   }
-  for (int l = depth - 1; l > regularDepth_; --l)
-    for (std::uint64_t k : keep[l + 1]) {
+  for (int l = depth - 1; l > regularDepth_; --l) {
+    // Grows the table for this level's own hot vertices plus all parents of the finer ones.
+    keep[l].reserveMore(27 * keep[l + 1].keys.size());
+    for (std::uint64_t k : keep[l + 1].keys) {
       const VertexIndex w = unpackVertexKey(k);
       forEachParentVertex(l, w.i, w.j, w.k, [&](std::uint64_t u) { keep[l].insert(u); });
     }
+  }
   // Finest first, so whole empty subtrees collapse in one update: remove the 3^d children of
   // a refined cell if none of them is refined and all their non-hanging vertices are
   // candidates. Decisions of one level are taken before its removals change hanging status.
@@ -333,7 +343,7 @@ void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
       for (std::int64_t a = 3 * c.i; a <= 3 * c.i + 3 && removable; ++a)
         for (std::int64_t b = 3 * c.j; b <= 3 * c.j + 3 && removable; ++b)
           for (std::int64_t e = 3 * c.k; e <= 3 * c.k + 3 && removable; ++e)
-            if (keep[l + 1].count(key(a, b, e)) && !isHanging(l + 1, a, b, e)) removable = false;
+            if (keep[l + 1].contains(key(a, b, e)) && !isHanging(l + 1, a, b, e)) removable = false;
       if (removable) removals.push_back(cellKey);
     }
     for (std::uint64_t cellKey : removals) refined_[l].erase(cellKey);
@@ -400,13 +410,23 @@ void AdaptiveGrid::collectStatistics() {
       s.vertices = (c + 1) * (c + 1) * (c + 1);
     } else {
       s.cells = 27 * refined_[l - 1].size();
-      std::unordered_set<std::uint64_t> seen;
+      // A vertex shared by several refined parents is counted by the first of them (lowest
+      // index per axis); the 8 interior ones of a patch are never hanging.
       for (std::uint64_t cellKey : refined_[l - 1]) {
         const VertexIndex c = unpackVertexKey(cellKey);
         for (std::int64_t a = 3 * c.i; a <= 3 * c.i + 3; ++a)
           for (std::int64_t b = 3 * c.j; b <= 3 * c.j + 3; ++b)
-            for (std::int64_t e = 3 * c.k; e <= 3 * c.k + 3; ++e)
-              if (seen.insert(key(a, b, e)).second && !isHanging(l, a, b, e)) ++s.vertices;
+            for (std::int64_t e = 3 * c.k; e <= 3 * c.k + 3; ++e) {
+              if (a % 3 != 0 && b % 3 != 0 && e % 3 != 0) {
+                ++s.vertices;
+                continue;
+              }
+              if (isHanging(l, a, b, e)) continue;
+              // Non-hanging: every parent cell around it is refined; the owner has the lowest.
+              const bool owner = (a != 3 * c.i || a == 0) && (b != 3 * c.j || b == 0) &&
+                                 (e != 3 * c.k || e == 0);
+              if (owner) ++s.vertices;
+            }
       }
     }
     stats_.cells += s.cells;

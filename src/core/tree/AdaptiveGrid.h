@@ -25,6 +25,7 @@
 #include "tree/GridType.h"
 #include "tree/Spacetree.h"
 #include "tree/VertexKey.h"
+#include "tree/VertexKeySet.h"
 
 namespace spacetree {
 
@@ -66,6 +67,7 @@ class AdaptiveGrid {
  private:
   using CellSet = std::unordered_set<std::uint64_t>;
   using Markers = std::unordered_map<std::uint64_t, std::int64_t>;
+  using KeySet = VertexKeySet;
   struct Index3 {
     std::int64_t i, j, k;
   };

@@ -1,0 +1,45 @@
+// Set of packed vertex keys with the list of its members: open addressing (VertexHashMap)
+// for fast membership, the list for iteration. Built up per update, never erased from.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tree/VertexHashMap.h"
+
+namespace spacetree {
+
+class VertexKeySet {
+ public:
+  std::vector<std::uint64_t> keys;  // members in insertion order
+
+  // Empties the set, sized for `expected` members.
+  void reset(std::size_t expected) {
+    keys.clear();
+    capacity_ = expected;
+    map_.reset(expected);
+  }
+
+  // Makes room for `extra` further members without rehashing on every insert.
+  void reserveMore(std::size_t extra) {
+    if (keys.size() + extra <= capacity_) return;
+    capacity_ = keys.size() + extra;
+    map_.reset(capacity_);
+    for (std::size_t i = 0; i < keys.size(); ++i) map_.insert(keys[i], std::int32_t(i));
+  }
+
+  void insert(std::uint64_t key) {
+    if (map_.find(key) != VertexHashMap::kAbsent) return;
+    if (keys.size() >= capacity_) reserveMore(keys.size() + 16);  // keep load <= 1/2
+    map_.insert(key, std::int32_t(keys.size()));
+    keys.push_back(key);
+  }
+
+  bool contains(std::uint64_t key) const { return capacity_ > 0 && map_.find(key) != VertexHashMap::kAbsent; }
+
+ private:
+  VertexHashMap map_;
+  std::size_t capacity_ = 0;
+};
+
+}  // namespace spacetree
