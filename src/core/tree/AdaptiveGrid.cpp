@@ -333,13 +333,18 @@ void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
   std::vector<std::uint64_t> removals;
   for (int l = depth - 1; l >= regularDepth_; --l) {
     removals.clear();
+    // Parents of the refined cells one level down: one insert per refined child instead of
+    // 27 look-ups per refined cell.
+    VertexKeySet parentsOfRefined;
+    parentsOfRefined.reset(l + 1 < depth ? refined_[l + 1].size() : 0);
+    if (l + 1 < depth)
+      for (std::uint64_t childKey : refined_[l + 1]) {
+        const VertexIndex c = unpackVertexKey(childKey);
+        parentsOfRefined.insert(key(c.i / 3, c.j / 3, c.k / 3));
+      }
     for (std::uint64_t cellKey : refined_[l]) {
       const VertexIndex c = unpackVertexKey(cellKey);
-      bool removable = true;
-      for (int a = 0; a < 3 && removable; ++a)
-        for (int b = 0; b < 3 && removable; ++b)
-          for (int e = 0; e < 3 && removable; ++e)
-            removable = !isRefined(l + 1, 3 * c.i + a, 3 * c.j + b, 3 * c.k + e);
+      bool removable = !parentsOfRefined.contains(cellKey);
       for (std::int64_t a = 3 * c.i; a <= 3 * c.i + 3 && removable; ++a)
         for (std::int64_t b = 3 * c.j; b <= 3 * c.j + 3 && removable; ++b)
           for (std::int64_t e = 3 * c.k; e <= 3 * c.k + 3 && removable; ++e)
