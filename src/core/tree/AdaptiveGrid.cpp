@@ -143,18 +143,10 @@ void AdaptiveGrid::chooseGeometry(const double (*x)[3], const double* radius, in
   const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   const double margin = options_.padding * std::max(extent, minNeed > 0.0 ? minNeed : 0.0);
   const double rootNeed = std::max(extent + 2.0 * margin, maxNeed);
-  double finestNeed = minNeed;
-  if (!(finestNeed > 0.0)) finestNeed = rootNeed > 0.0 ? rootNeed : 1.0;
-  int depth = 0;
-  double root = finestNeed;
-  while (root < rootNeed && depth < options_.maxLevel) {
-    root *= 3.0;
-    ++depth;
-  }
-  if (root < rootNeed) root = rootNeed;
-  if (!(root > 0.0)) root = 1.0;
-  geometry_.rootSize = root;
-  geometry_.depth = depth;
+  chooseRootCube(minNeed, rootNeed, options_.maxLevel, geometry_);
+  if (!(geometry_.rootSize > 0.0)) geometry_.rootSize = 1.0;
+  const double root = geometry_.rootSize;
+  const int depth = geometry_.depth;
   for (int d = 0; d < 3; ++d) geometry_.origin[d] = 0.5 * (lo[d] + hi[d]) - 0.5 * root;
   haveGeometry_ = true;
   refined_.assign(std::size_t(depth) + 1, CellSet{});

@@ -13,4 +13,22 @@ struct GridGeometry {
   int depth = 0;                                // finest level; mesh size rootSize / 3^depth
 };
 
+// Root cube for particles needing mesh sizes from finestNeed up and a cube of at least
+// rootNeed: the finest mesh size the smallest particle needs, tripled until the cube covers
+// the particles and the biggest particle. Choosing it from the smallest particle makes the
+// finest level fit it tightly (no up-to-3x slack from the 3-way refinement there). Sets
+// rootSize and depth (at most maxLevel; then the finest level is coarser than ideal).
+inline void chooseRootCube(double finestNeed, double rootNeed, int maxLevel, GridGeometry& geometry) {
+  if (!(finestNeed > 0.0)) finestNeed = rootNeed > 0.0 ? rootNeed : 1.0;
+  int depth = 0;
+  double root = finestNeed;
+  while (root < rootNeed && depth < maxLevel) {
+    root *= 3.0;
+    ++depth;
+  }
+  if (root < rootNeed) root = rootNeed;
+  geometry.rootSize = root;
+  geometry.depth = depth;
+}
+
 }  // namespace spacetree

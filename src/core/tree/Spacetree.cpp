@@ -76,7 +76,7 @@ void Spacetree::resetLevels(const std::array<double, 3>& origin, double rootSize
   }
 }
 
-void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive) {
+void Spacetree::clear(int n, int nActive) {
   nActive_ = nActive;
   levels_.clear();
   stats_ = SpacetreeStatistics{};
@@ -86,6 +86,10 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
   sz_.clear();
   sr_.clear();
   sortedId_.clear();
+}
+
+void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive) {
+  clear(n, nActive);
   if (n <= 0) return;
 
   // Bounding box and the smallest and biggest mesh sizes the particles ask for.
@@ -93,35 +97,17 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
   validate(x, radius, n, lo, hi, minRadius, maxRadius);
   const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   const double coarsestNeed = requiredMeshSize(maxRadius);
-  double finestNeed = requiredMeshSize(minRadius);
+  const double finestNeed = requiredMeshSize(minRadius);
   const double rootNeed = std::max(extent, coarsestNeed);
-  if (!(finestNeed > 0.0)) finestNeed = rootNeed > 0.0 ? rootNeed : 1.0;
-
-  // Root cube: the finest mesh size the smallest particle needs, tripled until the cube covers
-  // the particles and the biggest particle. Choosing it from the smallest particle makes the
-  // finest level fit it tightly (no up-to-3x slack from the 3-way refinement there).
-  int depth = 0;
-  double root = finestNeed;
-  while (root < rootNeed && depth < options_.maxLevel) {
-    root *= 3.0;
-    ++depth;
-  }
-  if (root < rootNeed) root = rootNeed;  // depth capped: finest level coarser than ideal
-  resetLevels({lo[0], lo[1], lo[2]}, root, depth);
+  GridGeometry geometry;
+  chooseRootCube(finestNeed, rootNeed, options_.maxLevel, geometry);
+  resetLevels({lo[0], lo[1], lo[2]}, geometry.rootSize, geometry.depth);
   placeParticles(x, radius, n, nullptr);
 }
 
 void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive,
                       const GridGeometry& geometry, const int* hostLevelOf) {
-  nActive_ = nActive;
-  levels_.clear();
-  stats_ = SpacetreeStatistics{};
-  particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
-  sx_.clear();
-  sy_.clear();
-  sz_.clear();
-  sr_.clear();
-  sortedId_.clear();
+  clear(n, nActive);
   if (geometry.depth < 0 || geometry.depth > options_.maxLevel)
     throw std::invalid_argument("spacetree: geometry depth must be in [0, maxLevel]");
   if (!(geometry.rootSize > 0.0) || !std::isfinite(geometry.rootSize))

@@ -115,6 +115,7 @@ class Spacetree {
   // Checks positions and radii; returns the bounding box and the radius range.
   static void validate(const double (*x)[3], const double* radius, int n, double lo[3],
                        double hi[3], double& minRadius, double& maxRadius);
+  void clear(int n, int nActive);  // forget the last build
   void resetLevels(const std::array<double, 3>& origin, double rootSize, int depth);
   void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
   void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
