@@ -125,13 +125,18 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   // 1. Pairs from the tree. With contact_distance_factor 1 its cut-off is bit for bit the one
   //    of granular_bin_no_newton; otherwise it is a superset (1e-12 relative) that is cut
   //    again here with LIGGGHTS' expression.
-  st.contact_radius.resize(nall);
-  for (int i = 0; i < nall; i++) st.contact_radius[i] = radius[i]*contactDistanceFactor;
+  // the tree works on contact radii: the atoms' radii unless contact_distance_factor scales them
+  const double *contact_radius = radius;
+  if (contactDistanceFactor != 1.0) {
+    st.contact_radius.resize(nall);
+    for (int i = 0; i < nall; i++) st.contact_radius[i] = radius[i]*contactDistanceFactor;
+    contact_radius = st.contact_radius.data();
+  }
   st.options.epsilon = 0.5*skin;
   try {
     st.tree.setOptions(st.options);
     st.tree.build(reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL),
-                  st.contact_radius.data(),nall,nlocal);
+                  contact_radius,nall,nlocal);
   } catch (const std::exception &e) {
     error->one(FLERR,e.what());
   }

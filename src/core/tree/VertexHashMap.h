@@ -1,6 +1,6 @@
-// Open-addressing hash map from a packed vertex key to a vertex slot of one grid level.
-// Levels are sparse (only vertices that host particles exist), so a dense array per level
-// would cost memory proportional to the domain volume; this costs memory per particle.
+// Open-addressing hash map from a packed vertex key to a vertex slot. Used for sparse levels
+// (see VertexLookup), where a dense array would cost memory proportional to the domain volume;
+// this costs memory per vertex.
 #pragma once
 
 #include <cstdint>
