@@ -227,8 +227,10 @@ TEST(ContactPhysics, DentedSphereComesToRestOnAFixedFloor) {
   for (const auto& v : grain.bodyMesh.vertices) bottom = std::min(bottom, p[0].body.toWorld(v).z());
   EXPECT_GT(bottom, 0.0);
   EXPECT_LT(bottom, 2 * eps);
-  // No friction and vertical normals: no horizontal drift.
-  EXPECT_LT(std::hypot(p[0].body.position.x(), p[0].body.position.y()), 1e-9);
+  // No friction and vertical normals (up to the hybrid's point accuracy): no horizontal drift
+  // beyond 1e-5 of the radius. (Without the local-minimum filter of MeshContact the slanted
+  // contacts of the floor face's diagonal pushed it 7e-5 m sideways in 0.84 s, never resting.)
+  EXPECT_LT(std::hypot(p[0].body.position.x(), p[0].body.position.y()), 1e-7);
   std::printf("[ dented sphere ] rest after %d steps (%.4f s), KE %.3g J, max penetration %.3g of eps, bottom %.3g eps\n",
               steps, steps * dt, energy, largestPenetration / eps, bottom / eps);
 }
