@@ -41,9 +41,9 @@
 // duplicates: a vertex touching a face is found once per triangle around the vertex. The
 // average (point, unit normal, penetration) is weighted by the penetrations, not plain as in
 // the paper: a triangle pair that just enters the 2 eps band has weight 0, so the merged force
-// changes continuously. This matters for spurious neighbours such as the interior diagonal
-// edge of a flat floor face, whose edge-edge contact is slanted: with plain averaging it would
-// tilt the merged normal by up to degrees and push a resting particle sideways.
+// changes continuously (with plain averaging, a slanted contact entering the band - e.g. one
+// that the filter (5b) is switched off for - tilted the merged normal of a resting particle by
+// 1e-3 rad at once).
 // Work is done in the first body's frame (only the second body's triangles near the first
 // are transformed); contacts are returned in the world frame.
 #pragma once
