@@ -89,6 +89,11 @@ struct MeshContactOptions {
   double mergeNormalCosine = 0.9;  // "reasonably close normals": within about 25 degrees
   // Optional hook after the bounding-sphere check: gets both poses and the gap between the
   // bounding spheres (centre distance - radii, may be negative); return false to skip the pair.
+  // Only pairs that cannot have a contact now may be skipped: a pair in halo contact that is
+  // separating still feels the spring S (eps - |n|) of eq. (1), so "not approaching" alone is
+  // no reason to skip it here (the paper uses its approach check for grid refinement, §5).
+  // Example: a caller that knows the surfaces were farther apart than 2 eps + v_max dt one
+  // step ago can skip the triangle checks.
   std::function<bool(const Pose& first, const Pose& second, double sphereGap)> approachPrecheck;
 };
 
