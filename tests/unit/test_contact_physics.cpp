@@ -146,6 +146,8 @@ TEST(ContactPhysics, HeadOnCubesGiveTheAnalyticRestitution) {
     EXPECT_NEAR(unequal / expected, 1.0, 0.02) << zeta;
     const double onFixed = headOnRestitution(zeta, 1000.0, 0.0, true, &contacts);
     EXPECT_NEAR(onFixed / expected, 1.0, 0.02) << zeta;
+    std::printf("[ head-on cubes ] zeta %.1f: e = %.4f (equal masses), %.4f (1:7.8), %.4f (fixed) vs closed form %.4f\n",
+                zeta, equal, unequal, onFixed, expected);
   }
 }
 
