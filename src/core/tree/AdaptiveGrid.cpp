@@ -395,6 +395,38 @@ void AdaptiveGrid::buildSpacetree(Spacetree& tree, const double (*x)[3], const d
   tree.build(x, radius, n, nActive, geometry_, host_.data());
 }
 
+std::vector<std::uint64_t> AdaptiveGrid::verticesPerLevel() const {
+  // Non-hanging vertices (all 2^d adjacent cells exist). Costs up to 64 hanging tests per
+  // refined cell, so it is counted on request (output), not in every update.
+  std::vector<std::uint64_t> count(haveGeometry_ ? std::size_t(geometry_.depth) + 1 : 0, 0);
+  for (int l = 0; l < int(count.size()); ++l) {
+    if (l <= regularDepth_) {
+      const std::uint64_t c = std::uint64_t(cellsPerAxis(l));
+      count[l] = (c + 1) * (c + 1) * (c + 1);
+      continue;
+    }
+    // A vertex shared by several refined parents is counted by the first of them (lowest
+    // index per axis); the 8 interior ones of a patch are never hanging.
+    for (std::uint64_t cellKey : refined_[l - 1]) {
+      const VertexIndex c = unpackVertexKey(cellKey);
+      for (std::int64_t a = 3 * c.i; a <= 3 * c.i + 3; ++a)
+        for (std::int64_t b = 3 * c.j; b <= 3 * c.j + 3; ++b)
+          for (std::int64_t e = 3 * c.k; e <= 3 * c.k + 3; ++e) {
+            if (a % 3 != 0 && b % 3 != 0 && e % 3 != 0) {
+              ++count[l];
+              continue;
+            }
+            if (isHanging(l, a, b, e)) continue;
+            // Non-hanging: every parent cell around it is refined; the owner has the lowest.
+            const bool owner = (a != 3 * c.i || a == 0) && (b != 3 * c.j || b == 0) &&
+                               (e != 3 * c.k || e == 0);
+            if (owner) ++count[l];
+          }
+    }
+  }
+  return count;
+}
+
 std::uint64_t AdaptiveGrid::leafCellCount() const {
   if (!haveGeometry_) return 0;
   // Every cell at or below the start-off level is a leaf unless it is refined.
@@ -420,27 +452,8 @@ void AdaptiveGrid::collectStatistics() {
     if (l <= regularDepth_) {
       const std::uint64_t c = std::uint64_t(cellsPerAxis(l));
       s.cells = c * c * c;
-      s.vertices = (c + 1) * (c + 1) * (c + 1);
     } else {
       s.cells = 27 * refined_[l - 1].size();
-      // A vertex shared by several refined parents is counted by the first of them (lowest
-      // index per axis); the 8 interior ones of a patch are never hanging.
-      for (std::uint64_t cellKey : refined_[l - 1]) {
-        const VertexIndex c = unpackVertexKey(cellKey);
-        for (std::int64_t a = 3 * c.i; a <= 3 * c.i + 3; ++a)
-          for (std::int64_t b = 3 * c.j; b <= 3 * c.j + 3; ++b)
-            for (std::int64_t e = 3 * c.k; e <= 3 * c.k + 3; ++e) {
-              if (a % 3 != 0 && b % 3 != 0 && e % 3 != 0) {
-                ++s.vertices;
-                continue;
-              }
-              if (isHanging(l, a, b, e)) continue;
-              // Non-hanging: every parent cell around it is refined; the owner has the lowest.
-              const bool owner = (a != 3 * c.i || a == 0) && (b != 3 * c.j || b == 0) &&
-                                 (e != 3 * c.k || e == 0);
-              if (owner) ++s.vertices;
-            }
-      }
     }
     stats_.cells += s.cells;
   }

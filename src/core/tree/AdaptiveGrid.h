@@ -69,6 +69,8 @@ class AdaptiveGrid {
   template <class F>
   void forEachLeafCell(F&& f) const;
   std::uint64_t leafCellCount() const;
+  // Non-hanging vertices per level (index = level); computed on request, not per update.
+  std::vector<std::uint64_t> verticesPerLevel() const;
 
  private:
   using CellSet = std::unordered_set<std::uint64_t>;
