@@ -10,7 +10,7 @@ TEST is one of (see `check_adaptive_grid.py list`):
                    ranks (multisets) and on 1 rank (sets); the adaptive grids must refine
   moving:NP        randomised: a dilute 1:20 continuous gas with fast random velocities
                    (seed from $SPACETREE_TEST_SEED, default 701), lists rebuilt every step, pairs
-                   dumped every 2 of 240 steps, for all three grid types; the adaptive and
+                   dumped every 3 of 180 steps, for all three grid types; the adaptive and
                    reluctant grids must refine and coarsen on many steps while staying exact
   paper71          the §7.1 deck (inputs/paper71/in.two_spheres_grid, 40 000 steps) for the three
                    grids: the spheres touch on the same steps; regular and adaptive compare the
@@ -38,8 +38,8 @@ GRIDS = ["regular", "adaptive", "reluctant"]
 DECK = "in.grid_pairs"
 PAIR_CASE_NAMES = ["r10_cont_periodic", "r100_bi_periodic", "r100_cont_walled"]
 
-MOVING_STEPS = 240
-MOVING_DUMP = 2
+MOVING_STEPS = 180
+MOVING_DUMP = 3
 
 # name: (fixargs, extra -var settings, regex the ERROR line must match)
 BAD_INPUT = {
