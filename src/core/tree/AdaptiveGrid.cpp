@@ -429,7 +429,10 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
   if (options_.type == GridType::Reluctant) rehostAll(x, n);
   if (options_.type != GridType::Regular) {
     coarsen(x, n);
-    rehostAll(x, n);  // particles on removed vertices lift
+    // Reluctant: particles under removed cells lift. Adaptive: every host vertex is kept, so
+    // the cells around it and (having refined children) all their ancestors stay: no host
+    // changes, no re-host needed.
+    if (options_.type == GridType::Reluctant) rehostAll(x, n);
   }
   collectStatistics();
 }
