@@ -157,6 +157,7 @@ void AdaptiveGrid::chooseGeometry(const double (*x)[3], const double* radius, in
   refined_.assign(std::size_t(depth) + 1, CellSet{});
   for (CellSet& cells : refined_) cells.reset(0);
   heat_.assign(std::size_t(depth) + 1, Markers{});
+  for (Markers& markers : heat_) markers.reset(0);
   ++stats_.geometryResets;
 }
 
@@ -290,7 +291,9 @@ void AdaptiveGrid::forEachParentVertex(int level, std::int64_t i, std::int64_t j
 void AdaptiveGrid::updateHeatMarkers(const double (*x)[3], int n) {
   // Annealing (reluctant): halve, add the particles of the vertex, add the children's markers.
   // Only levels below the start-off grid can be coarsened, so only they keep markers.
-  std::vector<Markers> next(heat_.size());
+  std::vector<Markers>& next = heatNext_;
+  next.resize(heat_.size());
+  for (std::size_t l = 0; l < next.size(); ++l) next[l].reset(heat_[l].size());
   for (int i = 0; i < n; ++i) {
     const int l = host_[i];
     if (l <= regularDepth_) continue;
@@ -298,11 +301,14 @@ void AdaptiveGrid::updateHeatMarkers(const double (*x)[3], int n) {
     ++next[l][key(v.i, v.j, v.k)];
   }
   for (int l = geometry_.depth; l > regularDepth_; --l) {
-    for (const auto& [k, m] : heat_[l])
-      if (m / 2 > 0) next[l][k] += m / 2;
+    for (std::size_t s = 0; s < heat_[l].size(); ++s) {
+      const std::int64_t m = heat_[l].values[s];
+      if (m / 2 > 0) next[l][heat_[l].keys[s]] += m / 2;
+    }
     if (l < geometry_.depth)
-      for (const auto& [k, m] : next[l + 1]) {
-        const VertexIndex w = unpackVertexKey(k);
+      for (std::size_t s = 0; s < next[l + 1].size(); ++s) {
+        const std::int64_t m = next[l + 1].values[s];
+        const VertexIndex w = unpackVertexKey(next[l + 1].keys[s]);
         forEachParentVertex(l, w.i, w.j, w.k, [&](std::uint64_t u) {
           std::int64_t& h = next[l][u];
           h = std::min(kMaxHeat, h + m);
@@ -325,8 +331,8 @@ void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
   if (options_.type == GridType::Reluctant) {
     for (int l = regularDepth_ + 1; l <= depth; ++l) {
       keep[l].reset(heat_[l].size());
-      for (const auto& [k, m] : heat_[l])
-        if (m >= options_.coarseningThreshold) keep[l].insert(k);
+      for (std::size_t s = 0; s < heat_[l].size(); ++s)
+        if (heat_[l].values[s] >= options_.coarseningThreshold) keep[l].insert(heat_[l].keys[s]);
     }
   } else {
     std::vector<std::size_t> perLevel(std::size_t(depth) + 1, 0);

@@ -15,8 +15,6 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -24,6 +22,7 @@
 #include "tree/GridGeometry.h"
 #include "tree/GridType.h"
 #include "tree/Spacetree.h"
+#include "tree/VertexCounters.h"
 #include "tree/VertexKey.h"
 #include "tree/VertexKeySet.h"
 
@@ -84,7 +83,7 @@ class AdaptiveGrid {
 
  private:
   using CellSet = VertexKeySet;  // open addressing: look-ups dominate the update
-  using Markers = std::unordered_map<std::uint64_t, std::int64_t>;
+  using Markers = VertexCounters;
   using KeySet = VertexKeySet;
   struct Index3 {
     std::int64_t i, j, k;
@@ -120,6 +119,7 @@ class AdaptiveGrid {
   int regularDepth_ = 0;
   std::vector<CellSet> refined_;  // per level, cells (not above regularDepth_) that are refined
   std::vector<Markers> heat_;     // per level, reluctant heat markers of vertices
+  std::vector<Markers> heatNext_; // scratch of updateHeatMarkers(), swapped with heat_
   std::vector<int> host_, admissible_;
   std::vector<double> required_;
   std::vector<std::pair<int, int>> closePairs_;
