@@ -16,6 +16,7 @@
 #include "error.h"
 #include "fix.h"
 #include "fix_contact_history.h"
+#include "fix_spacetree.h"
 #include "force.h"
 #include "modify.h"
 #include "my_page.h"
@@ -91,6 +92,9 @@ void Neighbor::spacetree_init()
     }
   }
 
+  // A fix spacetree (its init() ran before this one) supplies the adaptive grid.
+  spacetree->grid_fix = static_cast<FixSpacetree *>(modify->find_fix_style_strict("spacetree",0));
+
   // Mesh walls (fix neighlist/mesh) read the regular bins filled by the pair builder.
   spacetree->bins_for_meshes = false;
   for (int i = 0; i < modify->nfix; i++)
@@ -135,8 +139,16 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   st.options.epsilon = 0.5*skin;
   try {
     st.tree.setOptions(st.options);
-    st.tree.build(reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL),
-                  contact_radius,nall,nlocal);
+    const double (*xs)[3] = reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL);
+    if (st.grid_fix) {
+      // Ghost velocities exist only with `communicate ... vel yes`; without them the
+      // reluctant grid treats every close pair as approaching (more refinement, same lists).
+      const double (*vs)[3] = (nall && comm->ghost_velocity)
+        ? reinterpret_cast<const double (*)[3]>(atom->v[0]) : NULL;
+      st.grid_fix->build_tree(st.tree,xs,vs,contact_radius,nall,nlocal);
+    } else {
+      st.tree.build(xs,contact_radius,nall,nlocal);
+    }
   } catch (const std::exception &e) {
     error->one(FLERR,e.what());
   }
@@ -166,6 +178,18 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
     st.pair_j.push_back(rsq < radsum*radsum ? ~j : j);
     st.first[i+1]++;
   }, exact_cut ? 0.0 : 1e-12);
+
+  // The reluctant grid refines for the pairs this sweep found (used from the next build on).
+  if (st.grid_fix) {
+    try {
+      st.grid_fix->after_sweep(reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL),
+                               (nall && comm->ghost_velocity)
+                                 ? reinterpret_cast<const double (*)[3]>(atom->v[0]) : NULL,
+                               contact_radius,nall,st.pair_i,st.pair_j);
+    } catch (const std::exception &e) {
+      error->one(FLERR,e.what());
+    }
+  }
 
   // 2. Per-atom neighbour arrays (CSR), each sorted by index for a canonical order
   //    (touching pairs, stored as ~j, sort first; the order is still deterministic).

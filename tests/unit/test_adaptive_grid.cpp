@@ -263,3 +263,110 @@ TEST(AdaptiveGrid, SpacetreeOnAGivenCubeClampsHostLevelsAndStaysExact) {
   geometry.origin = {0.5, 0.5, 0.5};  // cube misses most particles
   EXPECT_THROW(tree.build(s.pos(), s.r.data(), s.size(), s.size(), geometry, nullptr), std::invalid_argument);
 }
+
+TEST(AdaptiveGrid, LeafCellsTileTheCubeAndHoldEveryParticleAtItsHostLevelOrFiner) {
+  // The leaves of a valid tree partition the root cube: their volumes add up to it, none
+  // overlaps another, and the leaf containing a particle is never coarser than its host level.
+  for (GridType type : {GridType::Regular, GridType::Adaptive, GridType::Reluctant}) {
+    SCOPED_TRACE(spacetree::gridTypeName(type));
+    Scene s = polydisperse(400, 3, 0.012, 25.0, 16);
+    AdaptiveGridOptions options;
+    options.type = type;
+    options.epsilon = 0.0005;
+    AdaptiveGrid grid(options);
+    for (int step = 0; step < 6; ++step) {
+      grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+      s.move(0.01);
+    }
+    grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+    const double root = grid.geometry().rootSize;
+    double volume = 0.0;
+    std::uint64_t leaves = 0;
+    std::set<std::array<std::int64_t, 4>> seen;
+    grid.forEachLeafCell([&](int level, std::int64_t i, std::int64_t j, std::int64_t k) {
+      const double h = grid.meshSize(level);
+      volume += h * h * h;
+      ++leaves;
+      EXPECT_TRUE(seen.insert({level, i, j, k}).second) << "leaf listed twice";
+    });
+    EXPECT_EQ(leaves, grid.leafCellCount());
+    EXPECT_NEAR(volume, root * root * root, 1e-9 * root * root * root);
+    // Each particle centre lies in exactly one leaf (one level of its chain of containing
+    // cells), never above its host level: the host descends only through refined cells.
+    for (int p = 0; p < s.size(); ++p) {
+      int leafLevel = -1, hits = 0;
+      for (int l = 0; l <= grid.geometry().depth; ++l) {
+        const double h = grid.meshSize(l);
+        std::array<std::int64_t, 4> cell{l, 0, 0, 0};
+        for (int d = 0; d < 3; ++d)
+          cell[d + 1] = std::int64_t(std::floor((s.x[p][d] - grid.geometry().origin[d]) / h));
+        if (seen.count(cell)) {
+          leafLevel = l;
+          ++hits;
+        }
+      }
+      ASSERT_EQ(hits, 1) << "particle " << p << " is in " << hits << " leaves";
+      EXPECT_GE(leafLevel, grid.hostLevel(p)) << "particle " << p;
+    }
+    if (type != GridType::Regular) {
+      EXPECT_GT(grid.statistics().deepestLevel, grid.statistics().regularDepth);
+    }
+  }
+}
+
+TEST(AdaptiveGrid, ReluctantFedByTheCallersSweepStaysExactAndAdapts) {
+  // pairsFromCaller: no second sweep inside update(); the pairs of the step's own sweep drive
+  // the refinement for the next step. Lists must stay exact; the grid must still refine for
+  // approaching pairs and coarsen behind them.
+  const double eps = 0.001;
+  Scene s = polydisperse(1200, 4, 0.005, 10.0, 17);
+  AdaptiveGridOptions options;
+  options.type = GridType::Reluctant;
+  options.epsilon = eps;
+  options.pairsFromCaller = true;
+  AdaptiveGrid grid(options);
+  Spacetree tree(SpacetreeOptions{eps});
+  std::uint64_t refinements = 0, coarsenings = 0;
+  int deepestSeen = 0;
+  for (int step = 0; step < 25; ++step) {
+    grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+    expectAdmissible(grid, s, eps);
+    const PairSet found = gridPairs(grid, tree, s);
+    ASSERT_EQ(found, bruteForce(s, eps)) << "step " << step;
+    std::vector<int> first, second;
+    for (const auto& p : found) {
+      first.push_back(p.first);
+      second.push_back(p.second);
+    }
+    grid.refineForPairs(s.pos(), s.vel(), s.r.data(), s.size(), first.data(), second.data(), first.size());
+    refinements += grid.statistics().refinements;
+    if (step > 0) coarsenings += grid.statistics().coarsenings;
+    deepestSeen = std::max(deepestSeen, grid.statistics().deepestLevel);
+    s.move(0.004);
+  }
+  EXPECT_GT(refinements, 0u);
+  EXPECT_GT(coarsenings, 0u);
+  EXPECT_GT(deepestSeen, grid.statistics().regularDepth) << "approaching pairs must drop";
+}
+
+TEST(AdaptiveGrid, AdaptiveCoarseningNeverMovesAParticle) {
+  // update() skips the re-host after adaptive coarsening: the host levels it reports must be
+  // what a fresh re-host on the coarsened grid gives. A second update with the particles
+  // standing still re-hosts from scratch and must agree, level for level.
+  const double eps = 0.0005;
+  Scene s = polydisperse(600, 3, 0.003, 40.0, 18);
+  AdaptiveGridOptions options;
+  options.epsilon = eps;
+  AdaptiveGrid grid(options);
+  std::uint64_t coarsenings = 0;
+  for (int step = 0; step < 12; ++step) {
+    grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+    coarsenings += step > 0 ? grid.statistics().coarsenings : 0;
+    const std::vector<int> hosts = grid.hostLevels();
+    AdaptiveGrid copy = grid;
+    copy.update(s.pos(), s.vel(), s.r.data(), s.size());
+    ASSERT_EQ(copy.hostLevels(), hosts) << "step " << step;
+    s.move(0.01);
+  }
+  EXPECT_GT(coarsenings, 0u);
+}
