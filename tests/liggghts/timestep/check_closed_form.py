@@ -27,7 +27,7 @@ import lg  # noqa: E402
 
 DECK = os.path.join(HERE, "in.two_spheres_hooke")
 D, RHO, V0 = 0.01, 2500.0, 1.0
-EXTRA = "f_dtv[2] f_dtv[4] f_dtv[5] f_dtv[6] f_dtv[7] f_dtv[8]"
+EXTRA = "f_dtv[2] f_dtv[4] f_dtv[5] f_dtv[6] f_dtv[7] f_dtv[8] f_dtv[10]"
 
 
 def closed_form(e):
@@ -53,7 +53,8 @@ def measure(names, rows):
                max_overlap=max(0.0, -min(gap)))
     res["contact_time"] = cr[1] - cr[0] if len(cr) >= 2 else float("nan")
     for k, n in (("vetoed", "f_dtv[2]"), ("floored", "f_dtv[4]"), ("rollbacks", "f_dtv[5]"),
-                 ("failed", "f_dtv[6]"), ("overlap_now", "f_dtv[7]"), ("overlap_peak", "f_dtv[8]")):
+                 ("failed", "f_dtv[6]"), ("overlap_now", "f_dtv[7]"), ("overlap_peak", "f_dtv[8]"),
+                 ("rollbacks_rebuilt", "f_dtv[10]")):
         if n in names or n[2:] in names:
             res[k] = lg.column(names, rows, n)
     return res
@@ -145,7 +146,8 @@ def main():
             return 1
         peak0, peak1 = r0["max_overlap"], r1["max_overlap"]
         print("  peak overlap: %.4e without, %.4e with rollback (bound %.4e, closed-form peak %.4e); "
-              "rollbacks %d" % (peak0, peak1, bound, h["peak"], r1["rollbacks"][-1]))
+              "rollbacks %d (%d of steps that re-neighboured)"
+              % (peak0, peak1, bound, h["peak"], r1["rollbacks"][-1], r1["rollbacks_rebuilt"][-1]))
         check(peak0 > bound, "without rollback the coarse step overlaps deeper than penetration*eps")
         check(peak1 <= bound, "with rollback yes no step does")
         check(r0["rollbacks"][-1] == 0 and r1["rollbacks"][-1] >= 1, "rollbacks are counted in f_ID[5]")
