@@ -11,6 +11,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_wall_gran.h"
 #include "force.h"
 #include "granular_list_copy.h"
 #include "modify.h"
@@ -18,6 +19,7 @@
 #include "neigh_spacetree.h"
 #include "neighbor.h"
 #include "pair_gran.h"
+#include "primitive_wall.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -42,7 +44,8 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   vetoed_steps(0), floored_steps(0), critical_last(0), rollbacks(0), rollbacks_failed(0),
   rollbacks_rebuilt(0),
   overlap_now(0), overlap_peak(0), contacts_now(0), warned_floor(false), warned_exhausted(false),
-  warned_refused(false), redoing(false), saved_step(-1), nsaved(0), h_inum(-1), h_step(-1)
+  warned_refused(false), redoing(false), saved_step(-1), nsaved(0), h_inum(-1), h_step(-1),
+  x_build_step(-1)
 {
   if (narg < 5 || strcmp(arg[3],"creep") != 0)
     error->all(FLERR,"Illegal fix adapt/timestep command: expected 'creep C' after the style");
@@ -96,7 +99,7 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
           snprintf(msg,sizeof(msg),"Fix adapt/timestep cannot open file '%s'",arg[iarg+1]);
           error->one(FLERR,msg);
         }
-        fprintf(history,"# step time dt critical_pairs vetoed floored max_overlap contacts rollbacks\n");
+        fprintf(history,"# step time dt critical_pairs vetoed floored max_overlap contacts rollbacks list_margin last_build\n");
       }
     } else {
       char msg[256];
@@ -120,6 +123,8 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR,"Illegal fix adapt/timestep command: penetration is a rollback setting (add rollback yes)");
 
   time_depend = 1;   // elapsed time is accumulated with update_time() before each change
+  force_reneighbor = 1;   // an early list rebuild keeps every pair that can touch in the list
+  next_reneighbor = -1;
   scalar_flag = 1;
   vector_flag = 1;
   size_vector = 10;
@@ -180,6 +185,7 @@ void FixAdaptTimestep::init_list(int, NeighList *ptr)
 
 void FixAdaptTimestep::setup(int)
 {
+  track_list_build();
   spacetree::TimestepVeto veto(0.0,safety,eps);
   const PairScan scan = scan_pairs(veto_on ? &veto : NULL);
   overlap_now = scan.maxOverlap;
@@ -226,6 +232,41 @@ FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto 
       }
     }
   }
+  // primitive walls (fix wall/gran ... primitive): each local particle against the wall's
+  // closest point, treated as a sphere of radius 0 at rest (moving primitives: overlap only)
+  {
+    double **x = atom->x;
+    double **v = atom->v;
+    double *radius = atom->radius;
+    int *mask = atom->mask;
+    const double dt_test = policy.creep*update->dt;
+    const double rest[3] = {0.0,0.0,0.0};
+    for (int f = 0; f < modify->nfix; f++) {
+      if (strcmp(modify->fix[f]->style,"wall/gran") != 0) continue;
+      FixWallGran *wall = static_cast<FixWallGran*>(modify->fix[f]);
+      if (wall->is_mesh_wall() || !wall->primitiveWall()) continue;
+      const bool moving = wall->is_moving();
+      for (int i = 0; i < atom->nlocal; i++) {
+        if (!(mask[i] & groupbit)) continue;
+        double delta[3];
+        const double gap = wall->primitiveWall()->resolveContact(x[i],radius[i],delta);
+        if (gap < 0.0) {
+          local[0] = std::max(local[0],-gap);
+          local[1] += 1.0;
+          continue;
+        }
+        if (moving) continue;
+        const double xw[3] = {x[i][0]+delta[0],x[i][1]+delta[1],x[i][2]+delta[2]};
+        const double dist = std::sqrt(delta[0]*delta[0] + delta[1]*delta[1] + delta[2]*delta[2]);
+        if (policy.dtContact > 0.0 && dist > 0.0) {
+          const double approach = (v[i][0]*delta[0] + v[i][1]*delta[1] + v[i][2]*delta[2])/dist;
+          if (approach*dt_test > gap) local[3] = 1.0;
+        }
+        if (veto && veto->consider(x[i],v[i],radius[i],xw,rest,0.0,dt_test)) local[2] += 1.0;
+      }
+    }
+  }
+
   double global[4];
   MPI_Allreduce(&local[0],&global[0],1,MPI_DOUBLE,MPI_MAX,world);
   MPI_Allreduce(&local[1],&global[1],2,MPI_DOUBLE,MPI_SUM,world);
@@ -259,6 +300,9 @@ void FixAdaptTimestep::choose_timestep(const PairScan &scan, double veto_limit_l
   limits.skin = neighbor->skin;
   limits.halo = 2.0*eps;
   limits.inContact = scan.contactSoon;
+  limits.listMargin = list_margin();
+  // keep at least half the skin as look-ahead: rebuild the lists in the next step when less is left
+  if (limits.listMargin < 0.5*neighbor->skin) next_reneighbor = update->ntimestep + 1;
   if (neighbor->spacetree && neighbor->spacetree->tree.statistics().deepestPopulatedLevel >= 0)
     limits.finestCell = neighbor->spacetree->tree.meshSize(
         neighbor->spacetree->tree.statistics().deepestPopulatedLevel);
@@ -273,10 +317,43 @@ void FixAdaptTimestep::choose_timestep(const PairScan &scan, double veto_limit_l
     floored_steps += 1;
   }
   if (history && comm->me == 0)
-    fprintf(history,BIGINT_FORMAT " %.12g %.12g %g %d %d %.6g %g %g\n",update->ntimestep,
+    fprintf(history,BIGINT_FORMAT " %.12g %.12g %g %d %d %.6g %g %g %.6g " BIGINT_FORMAT "\n",update->ntimestep,
             update->atime + (update->ntimestep - update->atimestep)*dt,d.dt,critical_last,
-            int(d.vetoed),int(d.floored),scan.maxOverlap,scan.contacts,rollbacks);
+            int(d.vetoed),int(d.floored),scan.maxOverlap,scan.contacts,rollbacks,limits.listMargin,
+            neighbor->lastcall);
   if (d.dt != dt) set_dt(d.dt);
+}
+
+/* Positions at the last list build: a rebuild happens after initial_integrate, so the positions
+   at the end of that step are the ones the list was built from. */
+
+void FixAdaptTimestep::track_list_build()
+{
+  if (neighbor->lastcall == x_build_step) return;
+  x_build_step = neighbor->lastcall;
+  const int nlocal = atom->nlocal;
+  x_build.resize(3*nlocal);
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < 3; k++) x_build[3*i+k] = atom->x[i][k];
+}
+
+/* skin - 2 * largest displacement since the list was built (all ranks): a pair outside the list
+   is at least this far from touching. */
+
+double FixAdaptTimestep::list_margin()
+{
+  const int nlocal = atom->nlocal;
+  double dmax_local = 0.0, dmax;
+  if (int(x_build.size()) != 3*nlocal) dmax_local = 0.5*neighbor->skin;   // atoms came or went
+  else
+    for (int i = 0; i < nlocal; i++) {
+      const double dx = atom->x[i][0]-x_build[3*i], dy = atom->x[i][1]-x_build[3*i+1],
+                   dz = atom->x[i][2]-x_build[3*i+2];
+      dmax_local = std::max(dmax_local,dx*dx + dy*dy + dz*dz);
+    }
+  if (int(x_build.size()) == 3*nlocal) dmax_local = std::sqrt(dmax_local);
+  MPI_Allreduce(&dmax_local,&dmax,1,MPI_DOUBLE,MPI_MAX,world);
+  return std::max(neighbor->skin - 2.0*dmax,1e-3*neighbor->skin);
 }
 
 void FixAdaptTimestep::set_dt(double dt)
@@ -294,6 +371,7 @@ void FixAdaptTimestep::pre_force(int)
 
 void FixAdaptTimestep::end_of_step()
 {
+  track_list_build();
   spacetree::TimestepVeto veto(0.0,safety,eps);
   PairScan scan = scan_pairs(veto_on ? &veto : NULL);
 

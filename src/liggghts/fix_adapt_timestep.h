@@ -55,6 +55,8 @@ class FixAdaptTimestep : public Fix {
   void save_history();
   void restore_history();
   void redo_step();
+  void track_list_build();
+  double list_margin();
 
   spacetree::TimestepPolicy policy;
   spacetree::RollbackPolicy rollback;
@@ -78,6 +80,10 @@ class FixAdaptTimestep : public Fix {
   std::vector<double> h_value;
   int h_inum;
   bigint h_step;
+
+  // positions at the last neighbour-list build (Neighbor::xhold is not public)
+  std::vector<double> x_build;
+  bigint x_build_step;
 };
 
 }

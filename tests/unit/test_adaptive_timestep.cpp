@@ -262,3 +262,15 @@ TEST(TimestepRollback, BoundsTheEntryOverlapOfAFastCollisionWithoutVeto) {
   EXPECT_LE(with, policy.fraction * eps);
   EXPECT_GT(redos, 0);
 }
+
+TEST(AdaptiveTimestep, ListMarginKeepsUnlistedPairsApartForTheStep) {
+  TimestepPolicy policy;
+  policy.dtMax = 1.0;
+  TimestepLimits limits;
+  limits.skin = 0.002;
+  limits.maxSpeed = 0.5;  // skin cap: 0.5 * 0.002 / 0.5 = 2e-3
+  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, INFINITY).dt, 2e-3);
+  // particles moved 6e-4 since the build: unlisted pairs are >= 8e-4 apart, closing at <= 1 m/s
+  limits.listMargin = 0.002 - 2 * 6e-4;
+  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, INFINITY).dt, 8e-4);
+}

@@ -18,6 +18,8 @@ TimestepDecision nextTimestep(double dt, const TimestepPolicy& policy, const Tim
     if (limits.finestCell > 0.0) next = std::min(next, (limits.finestCell + limits.halo) / limits.maxSpeed);
     // LIGGGHTS rebuilds its lists when a particle moved skin/2: never move further in one step
     if (limits.skin > 0.0) next = std::min(next, 0.5 * limits.skin / limits.maxSpeed);
+    // no pair outside the list may touch within the step (two particles close in at 2 v_max)
+    if (limits.listMargin > 0.0) next = std::min(next, 0.5 * limits.listMargin / limits.maxSpeed);
   }
   TimestepDecision decision;
   if (vetoLimit < next) {

@@ -19,6 +19,9 @@ struct TimestepLimits {
   double skin = 0.0;        // neighbour-list skin (0 = no list constraint)
   double maxSpeed = 0.0;    // fastest particle
   bool inContact = false;   // some pair overlaps now (dtContact applies)
+  // relative approach the current neighbour list still covers: skin - 2 * (largest displacement
+  // since the list was built); pairs outside the list are at least this far apart (0 = no limit)
+  double listMargin = 0.0;
 };
 
 struct TimestepDecision {
