@@ -155,7 +155,7 @@ void FixAdaptTimestep::init()
   if (!dtmin_set) policy.dtMin = 1e-3*policy.dtMax;
   if (policy.dtMin > policy.dtMax)
     error->all(FLERR,"Fix adapt/timestep: dtmin exceeds dtmax");
-  if (policy.dtContact > policy.dtMax)
+  if (policy.dtContact > policy.dtMax && comm->me == 0)
     error->warning(FLERR,"Fix adapt/timestep: dtcontact exceeds dtmax and has no effect");
   if (force->pair == NULL || dynamic_cast<PairGran*>(force->pair) == NULL) {
     if (veto_on || rollback_on || policy.dtContact > 0.0)
@@ -167,7 +167,7 @@ void FixAdaptTimestep::init()
   if (update->whichflag == 1 && strncmp(update->integrate_style,"verlet",6) != 0)
     error->all(FLERR,"Fix adapt/timestep needs run_style verlet");
   // the skin/2 cap only keeps the lists valid when they are rebuilt as soon as they may be stale
-  if (neighbor->every > 1 || neighbor->delay > 0 || !neighbor->dist_check)
+  if ((neighbor->every > 1 || neighbor->delay > 0 || !neighbor->dist_check) && comm->me == 0)
     error->warning(FLERR,"Fix adapt/timestep: with neigh_modify every > 1, delay > 0 or check no the "
                    "skin/2-per-step cap does not keep the neighbour lists valid");
   if (rollback_on) {

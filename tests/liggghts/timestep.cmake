@@ -18,6 +18,7 @@ foreach(case damped elastic rollback)
   ts_test("timestep.${case}.2" "${_ts_dir}/check_closed_form.py" "${case}:2" 2 120)
 endforeach()
 ts_test("timestep.control" "${_ts_dir}/check_closed_form.py" control 1 60)
+ts_test("timestep.badinput" "${_ts_dir}/check_closed_form.py" badinput 1 60)
 
 foreach(case impact100 ratio1000 squeeze threebody stack)
   ts_test("hardcase.${case}" "${_hc_dir}/check_hardcases.py" "${case}" 1 180)

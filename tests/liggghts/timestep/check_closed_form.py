@@ -13,8 +13,9 @@ CASE
   rollback[:NP] veto no, a coarse dtcontact: without rollback the first contact step overlaps
                 deeper than penetration*eps; with rollback yes it does not, rollbacks > 0 are
                 counted, and the restitution is still within 1 %.
-  control       a fixed coarse step (no fix) breaks the 1 % restitution and the eps bound:
-                the checks above can fail.
+  control       a fixed coarse step (no fix) breaks the 1 % restitution bound: the checks
+                above can fail.
+  badinput      wrong keywords stop with an ERROR naming them.
 Exit status 0 = pass, 1 = fail.
 """
 import argparse
@@ -174,6 +175,16 @@ def main():
             return 1
         print("  fixed dt = tc/3: restitution %.4f, peak overlap %.4g (eps %.4g)" % (r["restitution"], r["max_overlap"], eps))
         check(abs(r["restitution"] - 0.5) > 0.005, "a coarse fixed step misses the 1 % restitution bound")
+    elif case == "badinput":
+        for adapt, expect in (("fix dtv all adapt/timestep creep 1.1 rollback yes", "rollback yes needs eps > 0"),
+                              ("fix dtv all adapt/timestep creep 1.1 eps 1e-4 penetration 0.5", "penetration is a rollback setting"),
+                              ("fix dtv all adapt/timestep creep 1.1 dtcontact -1", "dtcontact must be > 0"),
+                              ("fix dtv all adapt/timestep creep 1.1 rollback maybe", "rollback must be yes or no"),
+                              ("fix dtv all adapt/timestep creep 1.1 eps -1", "eps must be >= 0")):
+            rc, out, log = lg.run_deck(a.exe, DECK, a.workdir, "bad", {"e": 0.5, "adapt": adapt, "n": 10,
+                                       "extra": "v_gap", "dt0": 1e-5, "procs": procs, "nstyle": "spacetree"})
+            text = out + (open(log, errors="replace").read() if os.path.exists(log) else "")
+            check(rc != 0 and "ERROR" in text and expect in text, "'%s' stops with an ERROR: %s" % (adapt[28:], expect))
     else:
         print("unknown case", case)
         return 1
