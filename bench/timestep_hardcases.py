@@ -28,7 +28,7 @@ def main():
     work = os.path.join(ROOT, "build", "bench_timestep_hardcases")
     os.makedirs(a.results, exist_ok=True)
     rows, ok = [], True
-    for case in ("impact100", "impact100:2", "ratio1000", "squeeze", "squeeze:2", "threebody", "stack"):
+    for case in ("impact100", "impact100:2", "impact100veto", "ratio1000", "squeeze", "squeeze:2", "threebody", "stack"):
         t0 = time.perf_counter()
         p = subprocess.run([sys.executable, DRIVER, case, "--exe", a.exe, "--workdir",
                             os.path.join(work, case.replace(":", "_")), "--stack-steps", str(a.stack_steps)],

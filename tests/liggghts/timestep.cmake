@@ -20,7 +20,7 @@ endforeach()
 ts_test("timestep.control" "${_ts_dir}/check_closed_form.py" control 1 60)
 ts_test("timestep.badinput" "${_ts_dir}/check_closed_form.py" badinput 1 60)
 
-foreach(case impact100 ratio1000 squeeze threebody stack)
+foreach(case impact100 impact100veto ratio1000 squeeze threebody stack)
   ts_test("hardcase.${case}" "${_hc_dir}/check_hardcases.py" "${case}" 1 180)
 endforeach()
 ts_test("hardcase.impact100.2" "${_hc_dir}/check_hardcases.py" "impact100:2" 2 180)
