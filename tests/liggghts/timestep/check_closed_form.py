@@ -83,10 +83,10 @@ def main():
         print(("PASS " if cond else "FAIL ") + what)
         ok = ok and bool(cond)
 
-    def run(name, e, adapt, n, extra=EXTRA, dt0=1e-5, x0=0.0123, skin=0.002):
+    def run(name, e, adapt, n, extra=EXTRA, dt0=1e-5, x0=0.0123, skin=0.002, check_dist="yes"):
         rc, out, log = lg.run_deck(a.exe, DECK, a.workdir, name,
                                    {"e": e, "adapt": adapt, "n": n, "extra": extra, "dt0": dt0,
-                                    "procs": procs, "nstyle": "spacetree", "x0": x0, "skin": skin},
+                                    "procs": procs, "nstyle": "spacetree", "x0": x0, "skin": skin, "check": check_dist},
                                    nprocs=nprocs, mpiexec=a.mpiexec)
         if rc != 0:
             print(out[-3000:])
@@ -156,6 +156,15 @@ def main():
         check(peak1 <= bound, "with rollback yes no step does")
         check(r0["rollbacks"][-1] == 0 and r1["rollbacks"][-1] >= 1, "rollbacks are counted in f_ID[5]")
         check(r1["failed"][-1] == 0, "no rollback refused or exhausted")
+        # the same with a list rebuild in every step: every undone step had re-neighboured (atoms
+        # found by ID, contact history from the snapshot taken after the rebuild)
+        r2 = run("rollback_rebuild", 0.5, base + " rollback yes penetration 0.9", 150, x0=0.0132, skin=0.006,
+                 check_dist="no")
+        check(r2 is not None and r2["rollbacks_rebuilt"][-1] >= 1 and r2["rollbacks"][-1] == r2["rollbacks_rebuilt"][-1],
+              "with a rebuild in every step the undone steps had all re-neighboured (%s)"
+              % (r2 and r2["rollbacks_rebuilt"][-1]))
+        same = r2 is not None and all(abs(a - b) <= 1e-12 * max(1e-3, abs(a)) for a, b in zip(r1["gap"], r2["gap"]))
+        check(same and len(r1["gap"]) == len(r2["gap"]), "and the trajectory equals the one without rebuilds")
         # each step advanced the time by the step it was taken with: the one chosen before it,
         # halved once per rollback of that step
         worst = 0.0
