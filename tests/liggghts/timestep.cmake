@@ -13,7 +13,7 @@ function(ts_test name driver case nprocs timeout)
   set_tests_properties("liggghts.${name}" PROPERTIES LABELS liggghts TIMEOUT ${timeout} PROCESSORS ${nprocs})
 endfunction()
 
-foreach(case damped elastic rollback)
+foreach(case damped elastic rollback rollback_periodic)
   ts_test("timestep.${case}.1" "${_ts_dir}/check_closed_form.py" "${case}" 1 120)
   ts_test("timestep.${case}.2" "${_ts_dir}/check_closed_form.py" "${case}:2" 2 120)
 endforeach()
