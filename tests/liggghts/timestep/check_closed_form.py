@@ -85,14 +85,18 @@ def main():
         print(("PASS " if cond else "FAIL ") + what)
         ok = ok and bool(cond)
 
-    def run(name, e, adapt, n, extra=EXTRA, dt0=1e-5, x0=0.0123, skin=0.002, check_dist="yes", xs=0.0, bx="f"):
+    def run(name, e, adapt, n, extra=EXTRA, dt0=1e-5, x0=0.0123, skin=0.002, check_dist="yes", xs=0.0, bx="f",
+            extrafix="variable nofix equal 0", table=False):
         rc, out, log = lg.run_deck(a.exe, DECK, a.workdir, name,
                                    {"e": e, "adapt": adapt, "n": n, "extra": extra, "dt0": dt0,
-                                    "procs": procs, "nstyle": "spacetree", "x0": x0, "skin": skin, "check": check_dist, "xs": xs, "bx": bx},
+                                    "procs": procs, "nstyle": "spacetree", "x0": x0, "skin": skin, "check": check_dist, "xs": xs, "bx": bx,
+                                    "extrafix": extrafix},
                                    nprocs=nprocs, mpiexec=a.mpiexec)
         if rc != 0:
             print(out[-3000:])
             return None
+        if table:
+            return lg.thermo(log)
         return measure(*lg.thermo(log))
 
     if case == "damped":
@@ -124,6 +128,14 @@ def main():
               "in the contact (min %.3g) and back up to %.3g s afterwards" % (min(r["dt"]), late))
         total = sum(r["dt"][:-1])
         check(abs(total - r["t"][-1]) <= 1e-9 * r["t"][-1], "time %.15g = sum of the steps %.15g" % (r["t"][-1], total))
+        # fix check/timestep/gran (defined after this fix) reports dt / Rayleigh time for the dt in use
+        names, rows = run("damped_ctg", 0.5, adaptive_line(eps, h["contact_time"] / 200), 700,
+                          extra="f_ctg[1]", extrafix="fix ctg all check/timestep/gran 1 10 10 warn no",
+                          table=True)
+        ratio = [f / d for f, d in zip(lg.column(names, rows, "f_ctg[1]")[1:], lg.column(names, rows, "Dt")[1:])]
+        spread = (max(ratio) - min(ratio)) / max(ratio)
+        check(spread <= 1e-12 and min(lg.column(names, rows, "Dt")) < 1e-3 / 10,
+              "fix check/timestep/gran sees the adapted dt at every step (f_ctg[1]/dt spread %.1e)" % spread)
     elif case == "elastic":
         h = closed_form(1.0)
         eps = 1.5 * h["peak"]
