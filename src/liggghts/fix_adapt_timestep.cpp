@@ -152,7 +152,10 @@ void FixAdaptTimestep::init()
   // the deck's timestep is the ceiling, taken once: a later run must not inherit the adapted dt
   if (!dtmax_set && !dtmax_captured) policy.dtMax = update->dt;
   dtmax_captured = true;
-  if (!dtmin_set) policy.dtMin = 1e-3*policy.dtMax;
+  if (!dtmin_set) {
+    policy.dtMin = 1e-3*policy.dtMax;
+    if (policy.dtContact > 0.0) policy.dtMin = std::min(policy.dtMin,1e-2*policy.dtContact);
+  }
   if (policy.dtMin > policy.dtMax)
     error->all(FLERR,"Fix adapt/timestep: dtmin exceeds dtmax");
   if (policy.dtContact > policy.dtMax && comm->me == 0)
