@@ -86,10 +86,10 @@ def main():
         ok = ok and bool(cond)
 
     def run(name, e, adapt, n, extra=EXTRA, dt0=1e-5, x0=0.0123, skin=0.002, check_dist="yes", xs=0.0, bx="f",
-            extrafix="variable nofix equal 0", table=False):
+            extrafix="variable nofix equal 0", table=False, nstyle="spacetree"):
         rc, out, log = lg.run_deck(a.exe, DECK, a.workdir, name,
                                    {"e": e, "adapt": adapt, "n": n, "extra": extra, "dt0": dt0,
-                                    "procs": procs, "nstyle": "spacetree", "x0": x0, "skin": skin, "check": check_dist, "xs": xs, "bx": bx,
+                                    "procs": procs, "nstyle": nstyle, "x0": x0, "skin": skin, "check": check_dist, "xs": xs, "bx": bx,
                                     "extrafix": extrafix},
                                    nprocs=nprocs, mpiexec=a.mpiexec)
         if rc != 0:
@@ -128,6 +128,12 @@ def main():
               "in the contact (min %.3g) and back up to %.3g s afterwards" % (min(r["dt"]), late))
         total = sum(r["dt"][:-1])
         check(abs(total - r["t"][-1]) <= 1e-9 * r["t"][-1], "time %.15g = sum of the steps %.15g" % (r["t"][-1], total))
+        # with `neighbor ... bin` (no mesh cap, the same skin and list caps) the run is the same
+        rb = run("damped_bin", 0.5, adaptive_line(eps, h["contact_time"] / 200, "rollback yes penetration 0.9"), 700,
+                 nstyle="bin")
+        same = rb is not None and len(rb["gap"]) == len(r["gap"]) and \
+            all(abs(a - b) <= 1e-12 for a, b in zip(rb["gap"], r["gap"]))
+        check(same, "neighbor bin gives the same steps and trajectory")
         # fix check/timestep/gran (defined after this fix) reports dt / Rayleigh time for the dt in use
         names, rows = run("damped_ctg", 0.5, adaptive_line(eps, h["contact_time"] / 200), 700,
                           extra="f_ctg[1]", extrafix="fix ctg all check/timestep/gran 1 10 10 warn no",
