@@ -43,7 +43,7 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   rollback_on(false), safety(0.8), eps(0.0), list(NULL), history(NULL),
   vetoed_steps(0), floored_steps(0), critical_last(0), rollbacks(0), rollbacks_failed(0),
   rollbacks_rebuilt(0),
-  overlap_now(0), overlap_peak(0), contacts_now(0), warned_floor(false), warned_exhausted(false),
+  overlap_now(0), overlap_peak(0), contacts_now(0), contact_speed(0), warned_floor(false), warned_exhausted(false),
   warned_refused(false), redoing(false), saved_step(-1), nsaved(0), h_inum(-1), h_step(-1),
   x_build_step(-1)
 {
@@ -52,7 +52,7 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   policy.creep = force->numeric(FLERR,arg[4]);
   if (!(policy.creep >= 1.0)) error->all(FLERR,"Illegal fix adapt/timestep command: creep must be >= 1");
 
-  bool dtcontact_set = false, penetration_set = false;
+  bool dtcontact_set = false, penetration_set = false, dtrest_set = false;
   int iarg = 5;
   while (iarg < narg) {
     if (iarg+2 > narg) {
@@ -71,6 +71,19 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
       dtcontact_set = true;
       if (!(policy.dtContact > 0.0))
         error->all(FLERR,"Illegal fix adapt/timestep command: dtcontact must be > 0");
+    } else if (strcmp(arg[iarg],"vimpact") == 0) {
+      policy.impactSpeed = force->numeric(FLERR,arg[iarg+1]);
+      if (!(policy.impactSpeed > 0.0))
+        error->all(FLERR,"Illegal fix adapt/timestep command: vimpact must be > 0");
+    } else if (strcmp(arg[iarg],"tcontact") == 0) {
+      policy.contactTime = force->numeric(FLERR,arg[iarg+1]);
+      if (!(policy.contactTime > 0.0))
+        error->all(FLERR,"Illegal fix adapt/timestep command: tcontact must be > 0");
+    } else if (strcmp(arg[iarg],"dtrest") == 0) {
+      policy.dtRest = force->numeric(FLERR,arg[iarg+1]);
+      dtrest_set = true;
+      if (!(policy.dtRest > 0.0))
+        error->all(FLERR,"Illegal fix adapt/timestep command: dtrest must be > 0");
     } else if (strcmp(arg[iarg],"eps") == 0) {
       eps = force->numeric(FLERR,arg[iarg+1]);
       if (!(eps >= 0.0)) error->all(FLERR,"Illegal fix adapt/timestep command: eps must be >= 0");
@@ -99,12 +112,12 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
           snprintf(msg,sizeof(msg),"Fix adapt/timestep cannot open file '%s'",arg[iarg+1]);
           error->one(FLERR,msg);
         }
-        fprintf(history,"# step time dt critical_pairs vetoed floored max_overlap contacts rollbacks list_margin last_build\n");
+        fprintf(history,"# step time dt critical_pairs vetoed floored max_overlap contacts rollbacks list_margin last_build contact_speed\n");
       }
     } else {
       char msg[256];
       snprintf(msg,sizeof(msg),"Illegal fix adapt/timestep command: unknown keyword '%s' (known: dtmin "
-               "dtmax dtcontact eps veto safety rollback penetration retries file)",arg[iarg]);
+               "dtmax dtcontact vimpact tcontact dtrest eps veto safety rollback penetration retries file)",arg[iarg]);
       error->all(FLERR,msg);
     }
     iarg += 2;
@@ -117,6 +130,15 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR,"Illegal fix adapt/timestep command: dtmin exceeds dtmax");
   if (dtcontact_set && dtmin_set && policy.dtContact < policy.dtMin)
     error->all(FLERR,"Illegal fix adapt/timestep command: dtcontact is below dtmin");
+  // the state-dependent contact ceiling: dtcontact resolves an impact at vimpact; tcontact gives
+  // the contact's angular frequency pi/tcontact; dtrest (default tcontact/10) caps enduring contacts
+  if ((policy.impactSpeed > 0.0 || policy.contactTime > 0.0 || dtrest_set) &&
+      !(policy.impactSpeed > 0.0 && policy.contactTime > 0.0 && dtcontact_set))
+    error->all(FLERR,"Illegal fix adapt/timestep command: vimpact, tcontact and dtrest go together "
+               "with dtcontact (vimpact, tcontact and dtcontact are required)");
+  if (policy.impactSpeed > 0.0 && !dtrest_set) policy.dtRest = 0.1*policy.contactTime;
+  if (dtrest_set && policy.dtRest < policy.dtContact)
+    error->all(FLERR,"Illegal fix adapt/timestep command: dtrest is below dtcontact");
   if (rollback_on && !(eps > 0.0))
     error->all(FLERR,"Illegal fix adapt/timestep command: rollback yes needs eps > 0 (the allowed overlap)");
   if (penetration_set && !rollback_on)
@@ -127,7 +149,8 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   next_reneighbor = -1;
   scalar_flag = 1;
   vector_flag = 1;
-  size_vector = 10;
+  size_vector = 11;
+  comm_forward = 3;   // accelerations to ghosts (vimpact)
   global_freq = 1;
   extscalar = 0;
   extvector = 0;
@@ -204,7 +227,20 @@ void FixAdaptTimestep::setup(int)
 
 FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto *veto)
 {
-  double local[4] = {0.0,0.0,0.0,0.0};   // max overlap, contacts, critical pairs, contact soon
+  // max overlap, contacts, critical pairs, contact soon, largest contact speed (vimpact)
+  double local[5] = {0.0,0.0,0.0,0.0,0.0};
+  const bool speeds = policy.impactSpeed > 0.0;
+  if (speeds) {
+    // accelerations f/m at the end of the step (f is complete for owned atoms only): sent to
+    // ghosts. Atoms outside the group count as held (a fixed base sphere feels a force it never
+    // follows); keeping them in the group only overestimates the contact speed (smaller steps).
+    const int nall = atom->nlocal + atom->nghost;
+    accel.assign(3*size_t(nall),0.0);
+    for (int i = 0; i < atom->nlocal; i++)
+      if (atom->mask[i] & groupbit)
+        for (int k = 0; k < 3; k++) accel[3*i+k] = atom->f[i][k]/atom->rmass[i];
+    comm->forward_comm_fix(this);
+  }
   if (list) {
     neighbor->build_one(list->index);
     double **x = atom->x;
@@ -226,10 +262,19 @@ FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto 
         if (overlap > 0.0) {
           local[0] = std::max(local[0],overlap);
           local[1] += share;
+          if (speeds && dist > 0.0) {
+            const double vn = ((v[j][0]-v[i][0])*dx + (v[j][1]-v[i][1])*dy + (v[j][2]-v[i][2])*dz)/dist;
+            const double *ai = &accel[3*size_t(i)], *aj = &accel[3*size_t(j)];
+            const double an = ((aj[0]-ai[0])*dx + (aj[1]-ai[1])*dy + (aj[2]-ai[2])*dz)/dist;
+            local[4] = std::max(local[4],spacetree::contactSpeed(vn,an,policy.contactTime));
+          }
         } else if (policy.dtContact > 0.0 && dist > 0.0) {
           // a pair that may touch within the next step already needs the contact resolution
           const double approach = -((v[j][0]-v[i][0])*dx + (v[j][1]-v[i][1])*dy + (v[j][2]-v[i][2])*dz)/dist;
-          if (approach*dt_test > -overlap) local[3] = 1.0;
+          if (approach*dt_test > -overlap) {
+            local[3] = 1.0;
+            local[4] = std::max(local[4],approach);
+          }
         }
         if (veto && veto->consider(x[i],v[i],radius[i],x[j],v[j],radius[j],dt_test)) local[2] += share;
       }
@@ -256,6 +301,13 @@ FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto 
         if (gap < 0.0) {
           local[0] = std::max(local[0],-gap);
           local[1] += 1.0;
+          const double dist = std::sqrt(delta[0]*delta[0] + delta[1]*delta[1] + delta[2]*delta[2]);
+          if (speeds && dist > 0.0) {   // moving primitives: the particle's speed towards the wall
+            const double vn = (v[i][0]*delta[0] + v[i][1]*delta[1] + v[i][2]*delta[2])/dist;
+            const double an = (atom->f[i][0]*delta[0] + atom->f[i][1]*delta[1] + atom->f[i][2]*delta[2])
+                              /(dist*atom->rmass[i]);
+            local[4] = std::max(local[4],spacetree::contactSpeed(vn,an,policy.contactTime));
+          }
           continue;
         }
         if (moving) continue;
@@ -263,22 +315,26 @@ FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto 
         const double dist = std::sqrt(delta[0]*delta[0] + delta[1]*delta[1] + delta[2]*delta[2]);
         if (policy.dtContact > 0.0 && dist > 0.0) {
           const double approach = (v[i][0]*delta[0] + v[i][1]*delta[1] + v[i][2]*delta[2])/dist;
-          if (approach*dt_test > gap) local[3] = 1.0;
+          if (approach*dt_test > gap) {
+            local[3] = 1.0;
+            local[4] = std::max(local[4],approach);
+          }
         }
         if (veto && veto->consider(x[i],v[i],radius[i],xw,rest,0.0,dt_test)) local[2] += 1.0;
       }
     }
   }
 
-  double global[4];
+  double global[5];
   MPI_Allreduce(&local[0],&global[0],1,MPI_DOUBLE,MPI_MAX,world);
   MPI_Allreduce(&local[1],&global[1],2,MPI_DOUBLE,MPI_SUM,world);
-  MPI_Allreduce(&local[3],&global[3],1,MPI_DOUBLE,MPI_MAX,world);
+  MPI_Allreduce(&local[3],&global[3],2,MPI_DOUBLE,MPI_MAX,world);
   critical_last = global[2];
   PairScan scan;
   scan.maxOverlap = global[0];
   scan.contacts = global[1];
   scan.contactSoon = global[1] > 0.0 || global[3] > 0.0;
+  scan.contactSpeed = global[4];
   return scan;
 }
 
@@ -303,6 +359,8 @@ void FixAdaptTimestep::choose_timestep(const PairScan &scan, double veto_limit_l
   limits.skin = neighbor->skin;
   limits.halo = 2.0*eps;
   limits.inContact = scan.contactSoon;
+  limits.contactSpeed = scan.contactSpeed;
+  contact_speed = scan.contactSpeed;
   limits.listMargin = list_margin();
   // keep at least half the skin as look-ahead: rebuild the lists in the next step when less is left
   if (limits.listMargin < 0.5*neighbor->skin) next_reneighbor = update->ntimestep + 1;
@@ -320,10 +378,10 @@ void FixAdaptTimestep::choose_timestep(const PairScan &scan, double veto_limit_l
     floored_steps += 1;
   }
   if (history && comm->me == 0)
-    fprintf(history,BIGINT_FORMAT " %.12g %.12g %g %d %d %.6g %g %g %.6g " BIGINT_FORMAT "\n",update->ntimestep,
+    fprintf(history,BIGINT_FORMAT " %.12g %.12g %g %d %d %.6g %g %g %.6g " BIGINT_FORMAT " %.6g\n",update->ntimestep,
             update->atime + (update->ntimestep - update->atimestep)*dt,d.dt,critical_last,
             int(d.vetoed),int(d.floored),scan.maxOverlap,scan.contacts,rollbacks,limits.listMargin,
-            neighbor->lastcall);
+            neighbor->lastcall,scan.contactSpeed);
   if (d.dt != dt) set_dt(d.dt);
 }
 
@@ -593,6 +651,19 @@ void FixAdaptTimestep::redo_step()
   redoing = false;
 }
 
+int FixAdaptTimestep::pack_comm(int n, int *list_, double *buf, int, int *)
+{
+  for (int m = 0; m < n; m++)
+    for (int k = 0; k < 3; k++) buf[3*m+k] = accel[3*size_t(list_[m])+k];
+  return 3;   // LIGGGHTS 3.8 Comm::forward_comm_fix wants the values per atom
+}
+
+void FixAdaptTimestep::unpack_comm(int n, int first, double *buf)
+{
+  for (int m = 0; m < n; m++)
+    for (int k = 0; k < 3; k++) accel[3*size_t(first+m)+k] = buf[3*m+k];
+}
+
 double FixAdaptTimestep::compute_scalar()
 {
   return update->dt;
@@ -610,6 +681,7 @@ double FixAdaptTimestep::compute_vector(int n)
     case 6: return overlap_now;
     case 7: return overlap_peak;
     case 8: return contacts_now;
-    default: return rollbacks_rebuilt;
+    case 9: return rollbacks_rebuilt;
+    default: return contact_speed;
   }
 }

@@ -8,9 +8,12 @@
    is undone and redone with half the step.
 
      fix ID group adapt/timestep creep C [dtmin X] [dtmax X] [dtcontact X] [eps X] [veto yes|no]
-         [safety S] [rollback yes|no] [penetration F] [retries N] [file F]
+         [vimpact V tcontact T [dtrest X]] [safety S] [rollback yes|no] [penetration F] [retries N] [file F]
 
-   Output (docs/fix_adapt_timestep.md): f_ID = current dt; f_ID[1..10]. */
+   With vimpact, the contact ceiling follows each contact's speed w = sqrt(vn^2 + (pi delta/T)^2):
+   dt <= min(dtrest, dtcontact V / w_max) over the pairs in contact or about to touch.
+
+   Output (docs/fix_adapt_timestep.md): f_ID = current dt; f_ID[1..11]. */
 
 #ifdef FIX_CLASS
 
@@ -43,9 +46,11 @@ class FixAdaptTimestep : public Fix {
   void end_of_step();
   double compute_scalar();
   double compute_vector(int);
+  int pack_comm(int, int *, double *, int, int *);
+  void unpack_comm(int, int, double *);
 
  private:
-  struct PairScan { double maxOverlap; double contacts; bool contactSoon; };
+  struct PairScan { double maxOverlap; double contacts; bool contactSoon; double contactSpeed; };
   PairScan scan_pairs(spacetree::TimestepVeto *veto);
   void choose_timestep(const PairScan &scan, double critical);
   void set_dt(double dt);
@@ -67,7 +72,7 @@ class FixAdaptTimestep : public Fix {
 
   // counters (f_ID[k])
   double vetoed_steps, floored_steps, critical_last, rollbacks, rollbacks_failed, rollbacks_rebuilt;
-  double overlap_now, overlap_peak, contacts_now;
+  double overlap_now, overlap_peak, contacts_now, contact_speed;
   bool warned_floor, warned_exhausted, warned_refused, redoing;
 
   // state at the start of the current step (rollback)
@@ -82,6 +87,7 @@ class FixAdaptTimestep : public Fix {
   bigint h_step;
 
   // positions at the last neighbour-list build (Neighbor::xhold is not public)
+  std::vector<double> accel;   // f/m of owned and ghost atoms (vimpact: relative normal acceleration)
   std::vector<double> x_build;
   bigint x_build_step;
 };

@@ -274,3 +274,93 @@ TEST(AdaptiveTimestep, ListMarginKeepsUnlistedPairsApartForTheStep) {
   limits.listMargin = 0.002 - 2 * 6e-4;
   EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, INFINITY).dt, 8e-4);
 }
+
+TEST(AdaptiveTimestep, ContactCeilingFollowsTheContactSpeed) {
+  TimestepPolicy policy;
+  policy.dtContact = 1e-5;
+  EXPECT_DOUBLE_EQ(contactCeiling(policy, 3.0), 1e-5) << "off: one ceiling for every contact";
+  policy.impactSpeed = 1.0;
+  policy.dtRest = 1e-4;
+  EXPECT_DOUBLE_EQ(contactCeiling(policy, 1.0), 1e-5);
+  EXPECT_DOUBLE_EQ(contactCeiling(policy, 4.0), 2.5e-6) << "faster than the reference: finer";
+  EXPECT_DOUBLE_EQ(contactCeiling(policy, 0.5), 2e-5);
+  EXPECT_DOUBLE_EQ(contactCeiling(policy, 1e-3), 1e-4) << "enduring contact: the stability ceiling";
+  EXPECT_DOUBLE_EQ(contactCeiling(policy, 0.0), 1e-4);
+  // contact speed: the velocity amplitude of the contact's normal oscillation
+  const double tc = 1e-3, omega = M_PI / tc;
+  EXPECT_DOUBLE_EQ(contactSpeed(-2.0, 0.0, tc), 2.0) << "no acceleration: |vn|";
+  // undamped impact at 1.5 m/s, at any phase: vn = v0 cos(wt), an = -v0 w sin(wt)
+  for (double phase : {0.0, 0.4, M_PI / 2, 2.5})
+    EXPECT_NEAR(contactSpeed(1.5 * std::cos(phase), -1.5 * omega * std::sin(phase), tc), 1.5, 1e-12);
+  EXPECT_DOUBLE_EQ(contactSpeed(0.0, 0.0, tc), 0.0) << "steady load: at rest however deep";
+  EXPECT_THROW(contactSpeed(1.0, 1e-4, 0.0), std::invalid_argument);
+}
+
+namespace {
+// A sphere dropped on a linear elastic floor under gravity, velocity Verlet, the step chosen
+// before every step by the policy from the current state (contact or about to touch). Returns
+// the largest relative error of the total energy (kinetic + gravity + spring) over the run, the
+// largest step taken while in contact near the peak of the first impact, and the step at the end
+// (the sphere has come to rest on the floor only if damping were present; here it keeps
+// bouncing, so the end state is after the last bounce's flight).
+struct BounceResult {
+  double maxEnergyError, peakStep, steps;
+};
+
+BounceResult bounce(const TimestepPolicy& policy, double k, double tEnd, double drop, double v0 = 0.0) {
+  const double m = 1e-3, g = 9.81, r = 0.01, tc = M_PI * std::sqrt(m / k);
+  double z = r + drop, v = v0, dt = policy.dtContact, t = 0.0;
+  auto force = [&](double zz) { return (zz < r ? k * (r - zz) : 0.0) - m * g; };
+  auto energy = [&](double zz, double vv) {
+    const double d = std::max(r - zz, 0.0);
+    return 0.5 * m * vv * vv + m * g * zz + 0.5 * k * d * d;
+  };
+  const double e0 = energy(z, v);
+  double f = force(z);
+  BounceResult res{0.0, 0.0, 0.0};
+  TimestepLimits limits;
+  while (t < tEnd) {
+    const double overlap = r - z, approach = -v;
+    limits.inContact = overlap > 0.0 || approach * policy.creep * dt > -overlap;
+    limits.contactSpeed = contactSpeed(v, f / m, tc);   // floor at rest: relative = absolute
+    dt = nextTimestep(dt, policy, limits, INFINITY).dt;
+    z += v * dt + 0.5 * f / m * dt * dt;
+    const double fn = force(z);
+    v += 0.5 * (f + fn) / m * dt;
+    f = fn;
+    t += dt;
+    res.steps += 1;
+    if (r - z > 0.0 && std::fabs(v) < 0.2 * std::sqrt(2 * g * drop)) res.peakStep = std::max(res.peakStep, dt);
+    res.maxEnergyError = std::max(res.maxEnergyError, std::fabs(energy(z, v) - e0) / e0);
+  }
+  return res;
+}
+}  // namespace
+
+TEST(AdaptiveTimestep, StateDependentCeilingResolvesImpactsAndRelaxesRestingContacts) {
+  const double k = 1e4, m = 1e-3, tc = M_PI * std::sqrt(m / k), drop = 0.05;
+  const double vImpact = std::sqrt(2 * 9.81 * drop);
+  TimestepPolicy fixedContact;           // the state-independent ceiling tc/100
+  fixedContact.creep = 1.1;
+  fixedContact.dtMax = 1e-3;
+  fixedContact.dtMin = 1e-9;
+  fixedContact.dtContact = tc / 100;
+  TimestepPolicy state = fixedContact;   // the same ceiling for an impact at the drop speed
+  state.impactSpeed = vImpact;
+  state.contactTime = tc;
+  state.dtRest = tc / 10;
+  const double tEnd = 0.25;               // two bounces
+  const BounceResult a = bounce(fixedContact, k, tEnd, drop), b = bounce(state, k, tEnd, drop);
+  // impacts at the reference speed: the peak of the impact is resolved as finely as before
+  // (the contact speed stays at the approach speed through the impact, no jump at v_n = 0)
+  EXPECT_LE(b.peakStep, 1.05 * tc / 100);
+  EXPECT_LE(b.maxEnergyError, 2.0 * a.maxEnergyError) << "same order: the entry phase differs";
+  // a sphere resting on the floor (released at its static overlap, at rest): its contact speed is
+  // omega * m g / k = g / omega, so the step goes to dtRest; energy still conserved closely
+  const double rest = m * 9.81 / k;
+  TimestepPolicy r = state;
+  const BounceResult resting = bounce(r, k, 0.05, -rest);
+  const BounceResult restingFixed = bounce(fixedContact, k, 0.05, -rest);
+  EXPECT_LT(resting.steps, 0.15 * restingFixed.steps);
+  EXPECT_LT(resting.maxEnergyError, 1e-9);
+}

@@ -15,6 +15,8 @@ CASE
                 counted, and the restitution is still within 1 %.
   rollback_periodic[:NP] the rollback case across a periodic boundary (atom wrapped and, on 2
                 ranks, handed to another rank in the undone step) equals the non-periodic run.
+  vimpact[:NP]  e = 1 with the state-dependent contact ceiling (vimpact = closing speed): no step in
+                contact exceeds dtcontact, the contact speed f_ID[11] stays at 2 m/s, energy kept.
   control       a fixed coarse step (no fix) breaks the 1 % restitution bound: the checks
                 above can fail.
   badinput      wrong keywords stop with an ERROR naming them.
@@ -218,6 +220,36 @@ def main():
               "the gap equals the non-periodic run at every step (worst difference %.2e m)" % worst)
         check(abs(per["restitution"] - ref["restitution"]) <= 1e-9 * abs(ref["restitution"]),
               "and so does the outcome")
+    elif case == "vimpact":
+        # state-dependent contact ceiling: dtcontact resolves a contact of speed vimpact = the closing
+        # speed 2 v0. Elastic: the contact speed sqrt(vn^2 + (an/omega)^2) stays 2 m/s through the
+        # impact (vn -> 0 at the peak, an largest there), so no step in contact exceeds dtcontact;
+        # on 2 ranks the partner's acceleration comes from the ghost (forward comm)
+        h = closed_form(1.0)
+        eps = 1.5 * h["peak"]
+        dtc = h["contact_time"] / 200
+        names, rows = run("vimpact", 1.0, adaptive_line(eps, dtc, "vimpact %.9g tcontact %.9g" % (2 * V0, h["contact_time"])),
+                          700, extra=EXTRA + " f_dtv[9] f_dtv[11]", table=True)
+        check(names is not None, "adaptive run finished on %d rank(s)" % nprocs)
+        if names is None:
+            return 1
+        r = measure(names, rows)
+        col = lambda n: lg.column(names, rows, n)  # noqa: E731
+        # thermo runs after the fix's end_of_step: Dt of row k is the step chosen from the state of row k
+        in_contact = [k for k in range(len(rows) - 1) if col("f_dtv[9]")[k] > 0]
+        dt_contact = max(col("Dt")[k] for k in in_contact)
+        w = [col("f_dtv[11]")[k] for k in in_contact]
+        print("  %d steps, %d in contact: largest step in contact %.4g dtcontact, contact speed %.4f .. %.4f m/s, "
+              "KE after/before - 1 = %.2e, restitution %.6f" % (r["steps"], len(in_contact), dt_contact / dtc,
+                                                              min(w), max(w), r["ke_ratio"] - 1, r["restitution"]))
+        check(len(r["crossings"]) >= 2, "the spheres collided and separated")
+        check(dt_contact <= 1.01 * dtc, "no step in contact exceeds dtcontact (largest %.4f dtcontact)" % (dt_contact / dtc))
+        check(all(abs(x - 2 * V0) <= 0.02 * 2 * V0 for x in w),
+              "contact speed f_ID[11] = closing speed 2 m/s within 2 %% at every contact step (%.4f .. %.4f)"
+              % (min(w), max(w)))
+        check(abs(r["ke_ratio"] - 1.0) <= 1e-4, "kinetic energy after = before within 1e-4 (%.2e)" % (r["ke_ratio"] - 1))
+        check(abs(r["contact_time"] - h["contact_time"]) <= 0.01 * h["contact_time"],
+              "contact duration within 1 % of pi/omega_0")
     elif case == "control":
         h = closed_form(0.5)
         eps = 1.5 * h["peak"]
@@ -233,7 +265,11 @@ def main():
                               ("fix dtv all adapt/timestep creep 1.1 eps 1e-4 penetration 0.5", "penetration is a rollback setting"),
                               ("fix dtv all adapt/timestep creep 1.1 dtcontact -1", "dtcontact must be > 0"),
                               ("fix dtv all adapt/timestep creep 1.1 rollback maybe", "rollback must be yes or no"),
-                              ("fix dtv all adapt/timestep creep 1.1 eps -1", "eps must be >= 0")):
+                              ("fix dtv all adapt/timestep creep 1.1 eps -1", "eps must be >= 0"),
+                              ("fix dtv all adapt/timestep creep 1.1 dtcontact 1e-6 vimpact 1",
+                               "vimpact, tcontact and dtrest go together"),
+                              ("fix dtv all adapt/timestep creep 1.1 dtcontact 1e-6 vimpact 1 tcontact 1e-4 dtrest 1e-7",
+                               "dtrest is below dtcontact")):
             rc, out, log = lg.run_deck(a.exe, DECK, a.workdir, "bad", {"e": 0.5, "adapt": adapt, "n": 10,
                                        "extra": "v_gap", "dt0": 1e-5, "procs": procs, "nstyle": "spacetree"})
             text = out + (open(log, errors="replace").read() if os.path.exists(log) else "")
