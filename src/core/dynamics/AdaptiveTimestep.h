@@ -10,6 +10,13 @@ struct TimestepPolicy {
   double creep = 1.1;    // growth factor C > 1 per step
   double dtMin = 0.0;    // floor: a veto never cuts below it (reported when hit)
   double dtMax = 0.0;    // ceiling (e.g. a fraction of the contact time); 0 = none
+  double dtContact = 0.0;  // ceiling while any pair is in contact (resolves the contact); 0 = none
+  // State-dependent contact ceiling (0 = off: dtContact for every contact). dtContact then
+  // resolves a contact of speed impactSpeed; a contact of speed w (contactSpeed()) gets
+  // dtContact * impactSpeed / w, at most dtRest (stability of an enduring contact).
+  double impactSpeed = 0.0;
+  double contactTime = 0.0;  // shortest contact time tc of the system: omega = pi / tc
+  double dtRest = 0.0;
 };
 
 struct TimestepLimits {
@@ -17,6 +24,12 @@ struct TimestepLimits {
   double halo = 0.0;        // 2 eps
   double skin = 0.0;        // neighbour-list skin (0 = no list constraint)
   double maxSpeed = 0.0;    // fastest particle
+  bool inContact = false;   // some pair overlaps now (dtContact applies)
+  // largest contactSpeed() over the pairs in contact or about to touch (impactSpeed > 0 only)
+  double contactSpeed = 0.0;
+  // relative approach the current neighbour list still covers: skin - 2 * (largest displacement
+  // since the list was built); pairs outside the list are at least this far apart (0 = no limit)
+  double listMargin = 0.0;
 };
 
 struct TimestepDecision {
@@ -24,6 +37,20 @@ struct TimestepDecision {
   bool vetoed = false;    // a critical approach cut the step
   bool floored = false;   // the caps or the veto asked for less than dtMin
 };
+
+// Speed of a contact's normal oscillation about its current equilibrium, sqrt(vn^2 + (an/omega)^2)
+// with vn, an the relative normal velocity and acceleration and omega = pi / tc: a linear contact
+// obeys an = -omega^2 (delta - delta_eq), so this is the velocity amplitude of the oscillation.
+// For an undamped impact of free particles it is constant through the contact and equals the
+// approach speed at entry (no dip at the peak, where vn = 0 but an is largest); for an enduring
+// contact under a steady load (a resting column) it is ~0 however deep the static overlap.
+double contactSpeed(double normalSpeed, double normalAcceleration, double contactTime);
+
+// The ceiling the contacts allow: dtContact, or with impactSpeed > 0
+// min(dtRest, dtContact * impactSpeed / contactSpeed). The per-step normal displacement
+// w dt of the fastest contact stays at impactSpeed * dtContact, so its absolute energy and
+// peak-overlap errors (both ~ m_eff w^2 (omega dt)^2) stay at those of an impact at impactSpeed.
+double contactCeiling(const TimestepPolicy& policy, double contactSpeed);
 
 // The step after one of size dt; vetoLimit is the largest step the critical approaches allow
 // (TimestepVeto::limit(), reduced over all ranks; +inf when none).
