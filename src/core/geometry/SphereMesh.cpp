@@ -6,31 +6,38 @@
 
 namespace spacetree::geometry {
 
-std::vector<Triangle> latitudeLongitudeSphere(int slices, int stacks, double radius) {
+TriangleMesh latitudeLongitudeSphereMesh(int slices, int stacks, double radius) {
   if (slices < 3 || stacks < 2)
     throw std::invalid_argument("latitudeLongitudeSphere: need slices >= 3 and stacks >= 2");
   const double pi = std::acos(-1.0);
-  const auto vertex = [&](int slice, int stack) {
+  TriangleMesh mesh;
+  // Vertex 0: north pole; then ring j = 1 .. stacks-1 with `slices` vertices; last: south pole.
+  mesh.vertices.emplace_back(0.0, 0.0, radius);
+  for (int stack = 1; stack < stacks; ++stack) {
     const double polar = pi * stack / stacks;
-    const double azimuth = 2.0 * pi * (slice % slices) / slices;
-    return Eigen::Vector3d(radius * std::sin(polar) * std::cos(azimuth),
-                           radius * std::sin(polar) * std::sin(azimuth),
-                           radius * std::cos(polar));
-  };
-  std::vector<Triangle> triangles;
-  triangles.reserve(std::size_t(2) * slices * (stacks - 1));
-  for (int i = 0; i < slices; ++i) {
-    triangles.emplace_back(vertex(i, 0), vertex(i, 1), vertex(i + 1, 1));
-    for (int j = 1; j + 1 < stacks; ++j) {
-      triangles.emplace_back(vertex(i, j), vertex(i, j + 1), vertex(i + 1, j + 1));
-      triangles.emplace_back(vertex(i, j), vertex(i + 1, j + 1), vertex(i + 1, j));
+    for (int slice = 0; slice < slices; ++slice) {
+      const double azimuth = 2.0 * pi * slice / slices;
+      mesh.vertices.emplace_back(radius * std::sin(polar) * std::cos(azimuth),
+                                 radius * std::sin(polar) * std::sin(azimuth),
+                                 radius * std::cos(polar));
     }
-    triangles.emplace_back(vertex(i, stacks - 1), vertex(i, stacks), vertex(i + 1, stacks - 1));
   }
-  return triangles;
+  mesh.vertices.emplace_back(0.0, 0.0, -radius);
+  const int southPole = int(mesh.vertices.size()) - 1;
+  const auto ring = [slices](int slice, int stack) { return 1 + (stack - 1) * slices + slice % slices; };
+  mesh.triangles.reserve(std::size_t(2) * slices * (stacks - 1));
+  for (int i = 0; i < slices; ++i) {
+    mesh.triangles.push_back({0, ring(i, 1), ring(i + 1, 1)});
+    for (int j = 1; j + 1 < stacks; ++j) {
+      mesh.triangles.push_back({ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)});
+      mesh.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)});
+    }
+    mesh.triangles.push_back({ring(i, stacks - 1), southPole, ring(i + 1, stacks - 1)});
+  }
+  return mesh;
 }
 
-std::vector<Triangle> latitudeLongitudeSphereWithAbout(int triangles, double radius) {
+TriangleMesh latitudeLongitudeSphereMeshWithAbout(int triangles, double radius) {
   // Closest count first, then slices closest to twice the stacks.
   int bestSlices = 3, bestStacks = 2;
   const auto miss = [triangles](int slices, int stacks) {
@@ -45,7 +52,15 @@ std::vector<Triangle> latitudeLongitudeSphereWithAbout(int triangles, double rad
         bestStacks = stacks;
       }
     }
-  return latitudeLongitudeSphere(bestSlices, bestStacks, radius);
+  return latitudeLongitudeSphereMesh(bestSlices, bestStacks, radius);
+}
+
+std::vector<Triangle> latitudeLongitudeSphere(int slices, int stacks, double radius) {
+  return latitudeLongitudeSphereMesh(slices, stacks, radius).triangleSoup();
+}
+
+std::vector<Triangle> latitudeLongitudeSphereWithAbout(int triangles, double radius) {
+  return latitudeLongitudeSphereMeshWithAbout(triangles, radius).triangleSoup();
 }
 
 }  // namespace spacetree::geometry
