@@ -2,7 +2,7 @@
 // checks a pair itself while sweeping: each candidate pair that passed the prechecks is put
 // into the current task; a task is spawned (fire and forget) as soon as it holds enough triangle
 // pairs to amortise the spawn, and a pair with more triangle pairs than that is split at
-// triangle level into several tasks (row ranges of its first particle's triangles). Worker
+// triangle level (if the check allows it) into several tasks (row ranges of its first particle's triangles). Worker
 // threads steal and run the tasks; each task writes its contacts into a buffer of its own, so
 // the hot path has no lock and no atomic. At the end of the sweep the producer joins once
 // (task_group::wait, which makes it help with the remaining tasks), then the buffers are
