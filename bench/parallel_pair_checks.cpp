@@ -3,7 +3,9 @@
 // spacetree traversal producing pair-check tasks + the hybrid triangle-distance checks run by
 // the arena's threads + the join and the canonical sort of the contacts. The tree is built once
 // per pack (its cost is reported separately). Thread counts are interleaved repetition by
-// repetition, so a load change on a shared machine hits all of them alike; medians are reported.
+// repetition, so a load change on a shared machine hits all of them alike; medians are reported,
+// with the process CPU time per sweep (all threads): equal CPU time for 1 and N threads means
+// the tasks add no work, whatever share of the cores a loaded machine leaves the benchmark.
 //
 // Usage: bench_parallel_pair_checks [--out FILE.csv] [--particles 1000,10000] [--threads 1,2]
 //                                   [--triangles 48] [--repetitions 5] [--grain 4096]
@@ -13,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -98,7 +101,7 @@ int main(int argc, char** argv) {
   csv << "particles,triangles_per_particle,threads,median_seconds_per_sweep,min_seconds_per_sweep,"
          "serial_seconds_per_sweep,speedup_vs_1_thread,candidate_pairs,triangle_pairs,tasks,"
          "contacts,producer_seconds_median,producer_fraction,tree_build_seconds,repetitions,"
-         "hardware_threads,load_average_1min\n";
+         "hardware_threads,load_average_1min,cpu_seconds_per_sweep\n";
 
   for (int n : s.particles) {
     TriangulatedSpherePackOptions o;
@@ -116,7 +119,8 @@ int main(int argc, char** argv) {
     std::vector<std::unique_ptr<TaskParallelPairChecks>> engines;
     for (int t : s.threads) engines.push_back(std::make_unique<TaskParallelPairChecks>(
                                 TaskParallelOptions{t, s.grain}));
-    std::vector<std::vector<double>> times(s.threads.size()), producerTimes(s.threads.size());
+    std::vector<std::vector<double>> times(s.threads.size()), producerTimes(s.threads.size()),
+        cpuTimes(s.threads.size());
     std::vector<double> serialTimes;
     std::vector<TriangleContact> contacts, reference;
     std::size_t referenceContacts = 0;
@@ -133,8 +137,10 @@ int main(int argc, char** argv) {
       referenceContacts = serial.size();
       for (std::size_t k = 0; k < engines.size(); ++k) {
         t0 = std::chrono::steady_clock::now();
+        const std::clock_t c0 = std::clock();
         engines[k]->run(tree, check, contacts);
         times[k].push_back(seconds(t0));
+        cpuTimes[k].push_back(double(std::clock() - c0) / CLOCKS_PER_SEC);
         producerTimes[k].push_back(engines[k]->statistics().producerSeconds);
         if (contacts.size() != referenceContacts) {
           std::fprintf(stderr, "contact count differs: %zu threads-engine vs %zu serial\n",
@@ -153,14 +159,15 @@ int main(int argc, char** argv) {
           << median(serialTimes) << ',' << speedup << ',' << st.pairs << ',' << st.trianglePairs
           << ',' << st.tasks << ',' << st.contacts << ',' << median(producerTimes[k]) << ','
           << median(producerTimes[k]) / m << ',' << buildSeconds << ',' << s.repetitions << ','
-          << std::thread::hardware_concurrency() << ',' << loadAverage() << '\n';
+          << std::thread::hardware_concurrency() << ',' << loadAverage() << ','
+          << median(cpuTimes[k]) << '\n';
       std::printf("%6d particles (%zu triangles each), %d thread(s): %.4f s per sweep (median of "
                   "%d), serial %.4f s, speed-up vs 1 thread %.2f; %llu pairs, %llu triangle pairs, "
-                  "%llu tasks, %llu contacts; producer %.4f s; load %.2f\n",
+                  "%llu tasks, %llu contacts; producer %.4f s; CPU %.4f s; load %.2f\n",
                   n, pack.meshes.triangleCount(0), engines[k]->threads(), m, s.repetitions,
                   median(serialTimes), speedup, (unsigned long long)st.pairs,
                   (unsigned long long)st.trianglePairs, (unsigned long long)st.tasks,
-                  (unsigned long long)st.contacts, median(producerTimes[k]), loadAverage());
+                  (unsigned long long)st.contacts, median(producerTimes[k]), median(cpuTimes[k]), loadAverage());
     }
   }
   std::printf("wrote %s\n", s.out.c_str());
