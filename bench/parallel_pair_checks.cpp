@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
   csv << "particles,triangles_per_particle,threads,median_seconds_per_sweep,min_seconds_per_sweep,"
          "serial_seconds_per_sweep,speedup_vs_1_thread,candidate_pairs,triangle_pairs,tasks,"
          "contacts,producer_seconds_median,producer_fraction,tree_build_seconds,repetitions,"
-         "hardware_threads,load_average_1min,cpu_seconds_per_sweep\n";
+         "hardware_threads,load_average_1min,cpu_seconds_per_sweep,serial_cpu_seconds_per_sweep\n";
 
   for (int n : s.particles) {
     TriangulatedSpherePackOptions o;
@@ -121,12 +121,13 @@ int main(int argc, char** argv) {
                                 TaskParallelOptions{t, s.grain}));
     std::vector<std::vector<double>> times(s.threads.size()), producerTimes(s.threads.size()),
         cpuTimes(s.threads.size());
-    std::vector<double> serialTimes;
+    std::vector<double> serialTimes, serialCpuTimes;
     std::vector<TriangleContact> contacts, reference;
     std::size_t referenceContacts = 0;
     for (int r = 0; r < s.repetitions; ++r) {
       // Serial baseline: every check called in the sweep itself.
       t0 = std::chrono::steady_clock::now();
+      const std::clock_t serialCpu0 = std::clock();
       std::vector<TriangleContact> serial;
       ContactSink sink(serial);
       tree.forEachPairWithin([&](int i, int j, double) {
@@ -134,6 +135,7 @@ int main(int argc, char** argv) {
         check.check(a, b, 0, check.triangleCount(a), sink);
       });
       serialTimes.push_back(seconds(t0));
+      serialCpuTimes.push_back(double(std::clock() - serialCpu0) / CLOCKS_PER_SEC);
       referenceContacts = serial.size();
       for (std::size_t k = 0; k < engines.size(); ++k) {
         t0 = std::chrono::steady_clock::now();
@@ -149,7 +151,9 @@ int main(int argc, char** argv) {
         }
       }
     }
-    const double oneThread = median(times[0]) * (s.threads[0] == 1 ? 1.0 : 0.0);
+    double oneThread = 0.0;  // the 1-thread median, if 1 is among the thread counts
+    for (std::size_t k = 0; k < engines.size(); ++k)
+      if (s.threads[k] == 1) oneThread = median(times[k]);
     for (std::size_t k = 0; k < engines.size(); ++k) {
       const TaskParallelStatistics& st = engines[k]->statistics();
       const double m = median(times[k]);
@@ -160,14 +164,15 @@ int main(int argc, char** argv) {
           << ',' << st.tasks << ',' << st.contacts << ',' << median(producerTimes[k]) << ','
           << median(producerTimes[k]) / m << ',' << buildSeconds << ',' << s.repetitions << ','
           << std::thread::hardware_concurrency() << ',' << loadAverage() << ','
-          << median(cpuTimes[k]) << '\n';
+          << median(cpuTimes[k]) << ',' << median(serialCpuTimes) << '\n';
       std::printf("%6d particles (%zu triangles each), %d thread(s): %.4f s per sweep (median of "
                   "%d), serial %.4f s, speed-up vs 1 thread %.2f; %llu pairs, %llu triangle pairs, "
-                  "%llu tasks, %llu contacts; producer %.4f s; CPU %.4f s; load %.2f\n",
+                  "%llu tasks, %llu contacts; producer %.4f s; CPU %.4f s (serial %.4f s); load %.2f\n",
                   n, pack.meshes.triangleCount(0), engines[k]->threads(), m, s.repetitions,
                   median(serialTimes), speedup, (unsigned long long)st.pairs,
                   (unsigned long long)st.trianglePairs, (unsigned long long)st.tasks,
-                  (unsigned long long)st.contacts, median(producerTimes[k]), median(cpuTimes[k]), loadAverage());
+                  (unsigned long long)st.contacts, median(producerTimes[k]), median(cpuTimes[k]), median(serialCpuTimes),
+                  loadAverage());
     }
   }
   std::printf("wrote %s\n", s.out.c_str());
