@@ -2,7 +2,7 @@
 """Plots bench/results/parallel_pair_checks.csv (written by bench_parallel_pair_checks).
 
 Left: wall time per task-parallel pair-check sweep versus threads, one line per pack size, the
-serial (no-TBB) sweep as a dotted mark at 1 thread. Right: speed-up over 1 thread, with the
+serial (no-TBB) sweep as a cross at 1 thread, the process CPU time per sweep dotted. Right: speed-up over 1 thread, with the
 ideal line.
 
 Usage: /usr/bin/python3 bench/plot_parallel_pair_checks.py [CSV] [PNG] [--note TEXT]
@@ -42,6 +42,9 @@ def main():
         line, = time_ax.plot(threads, t, "o-", label=label)
         time_ax.plot([1], [float(rows[0]["serial_seconds_per_sweep"])], "x", color=line.get_color(),
                      label="%d particles, serial sweep (no tasks)" % n)
+        if "cpu_seconds_per_sweep" in rows[0]:
+            time_ax.plot(threads, [float(r["cpu_seconds_per_sweep"]) for r in rows], ":",
+                         color=line.get_color(), label="%d particles, CPU time (all threads)" % n)
         s = [float(r["speedup_vs_1_thread"]) for r in rows]
         speed_ax.plot(threads, s, "o-", color=line.get_color(), label=label)
         for x, y in zip(threads, s):
