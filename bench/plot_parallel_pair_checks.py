@@ -9,6 +9,7 @@ Usage: /usr/bin/python3 bench/plot_parallel_pair_checks.py [CSV] [PNG] [--note T
 """
 import csv
 import sys
+import textwrap
 from collections import defaultdict
 
 import matplotlib
@@ -53,7 +54,7 @@ def main():
     time_ax.set_ylabel("wall time per sweep [s] (median)")
     time_ax.set_yscale("log")
     time_ax.set_title("Pair-check sweep: traversal as task producer")
-    time_ax.legend(fontsize=8)
+    time_ax.legend(fontsize=7, loc="best")
     speed_ax.plot([1, max_threads], [1, max_threads], "k--", lw=0.8, label="ideal")
     speed_ax.set_xlabel("threads")
     speed_ax.set_ylabel("speed-up over 1 thread")
@@ -63,8 +64,8 @@ def main():
         ax.set_xticks(range(1, max_threads + 1))
         ax.grid(alpha=0.3)
     if note:
-        fig.text(0.01, 0.01, note, fontsize=7, alpha=0.8)
-    fig.tight_layout(rect=(0, 0.04 if note else 0, 1, 1))
+        fig.text(0.01, 0.01, textwrap.fill(note, 170), fontsize=7, alpha=0.8)
+    fig.tight_layout(rect=(0, 0.07 if note else 0, 1, 1))
     fig.savefig(target, dpi=120)
     print("wrote", target)
 
