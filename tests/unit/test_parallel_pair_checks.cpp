@@ -269,6 +269,35 @@ TEST(ParallelPairChecks, ProducerExceptionPropagatesAndEngineStaysUsable) {
   expectBitIdentical(serialReference(scene, check), contacts, "after an exception");
 }
 
+namespace {
+// Throws on one pair: a failing check must reach the caller, not vanish in a worker.
+class FailingCheck : public PairCheck {
+ public:
+  explicit FailingCheck(const PairCheck& inner) : inner_(inner) {}
+  std::size_t triangleCount(int p) const override { return inner_.triangleCount(p); }
+  void check(int i, int j, std::size_t b, std::size_t e, ContactSink& sink) const override {
+    if (i == 10 || j == 10) throw std::domain_error("check failed");
+    inner_.check(i, j, b, e, sink);
+  }
+
+ private:
+  const PairCheck& inner_;
+};
+}  // namespace
+
+TEST(ParallelPairChecks, CheckExceptionPropagatesAndEngineStaysUsable) {
+  Scene scene(64);
+  PosedMeshPairCheck check(scene.pack.meshes, scene.hybrid);
+  FailingCheck failing(check);
+  for (int threads : {1, 2}) {
+    TaskParallelPairChecks engine(TaskParallelOptions{threads, 100});
+    std::vector<TriangleContact> contacts;
+    EXPECT_THROW(engine.run(scene.tree, failing, contacts), std::domain_error);
+    engine.run(scene.tree, check, contacts);
+    expectBitIdentical(serialReference(scene, check), contacts, "after a failed check");
+  }
+}
+
 TEST(ParallelPairChecks, BadOptionsAreRejected) {
   EXPECT_THROW(TaskParallelPairChecks(TaskParallelOptions{-1, 10}), std::invalid_argument);
   EXPECT_THROW(TaskParallelPairChecks(TaskParallelOptions{1, 0}), std::invalid_argument);
