@@ -9,6 +9,10 @@
 //
 // Usage: bench_parallel_pair_checks [--out FILE.csv] [--particles 1000,10000] [--threads 1,2]
 //                                   [--triangles 48] [--repetitions 5] [--grain 4096]
+//                                   [--check all-pairs|mesh-contact]
+// --check all-pairs (default): PosedMeshPairCheck, every triangle pair through the hybrid kernel.
+// --check mesh-contact: MeshContactPairCheck on the same poses with dented spheres (amplitude
+// 0.1, three templates): the contact search with triangle pruning and de-duplication.
 // Also prints, per pack, a serial baseline: the same checks called directly from the sweep,
 // no TBB at all. bench/plot_parallel_pair_checks.py plots the CSV.
 #include <oneapi/tbb/global_control.h>
@@ -21,11 +25,16 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "contact/MeshContact.h"
+#include "geometry/DentedSphere.h"
+#include "geometry/RigidShape.h"
+#include "parallel/MeshContactPairCheck.h"
 #include "parallel/PosedMeshPairCheck.h"
 #include "parallel/TaskParallelPairChecks.h"
 #include "parallel/TriangulatedSpherePack.h"
@@ -43,6 +52,7 @@ struct Settings {
   int triangles = 48;
   int repetitions = 5;
   std::size_t grain = 4096;
+  std::string check = "all-pairs";
 };
 
 std::vector<int> parseList(const char* s) {
@@ -63,12 +73,48 @@ Settings parse(int argc, char** argv) {
     else if (is("--triangles")) s.triangles = std::atoi(argv[++a]);
     else if (is("--repetitions")) s.repetitions = std::atoi(argv[++a]);
     else if (is("--grain")) s.grain = std::size_t(std::atoll(argv[++a]));
+    else if (is("--check")) s.check = argv[++a];
     else {
       std::fprintf(stderr, "bench_parallel_pair_checks: unknown or incomplete option '%s'\n", argv[a]);
       std::exit(2);
     }
   }
+  if (s.check != "all-pairs" && s.check != "mesh-contact") {
+    std::fprintf(stderr, "bench_parallel_pair_checks: --check must be all-pairs or mesh-contact\n");
+    std::exit(2);
+  }
   return s;
+}
+
+// The mesh-contact scene: dented spheres at the pack's centres and orientations.
+struct DentedScene {
+  std::vector<geometry::RigidShape> templates;
+  std::vector<const geometry::RigidShape*> shapes;
+  std::vector<contact::Pose> poses;
+};
+
+DentedScene dentedScene(const TriangulatedSpherePack& pack, int triangles, double radius,
+                        std::uint32_t seed) {
+  DentedScene scene;
+  for (std::uint64_t t = 1; t <= 3; ++t) {
+    geometry::DentedSphereOptions d;
+    d.triangles = triangles;
+    d.radius = radius;
+    d.amplitude = 0.1;
+    d.seed = t;
+    scene.templates.push_back(geometry::RigidShape::fromMesh(geometry::dentedSphere(d)));
+  }
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> gaussian;
+  for (std::size_t p = 0; p < pack.centre.size(); ++p) {
+    contact::Pose pose;
+    pose.position = Eigen::Vector3d(pack.centre[p].data());
+    pose.orientation = Eigen::Quaterniond(gaussian(random), gaussian(random), gaussian(random),
+                                          gaussian(random)).normalized();
+    scene.shapes.push_back(&scene.templates[p % 3]);
+    scene.poses.push_back(pose);
+  }
+  return scene;
 }
 
 double seconds(std::chrono::steady_clock::time_point t0) {
@@ -101,7 +147,8 @@ int main(int argc, char** argv) {
   csv << "particles,triangles_per_particle,threads,median_seconds_per_sweep,min_seconds_per_sweep,"
          "serial_seconds_per_sweep,speedup_vs_1_thread,candidate_pairs,triangle_pairs,tasks,"
          "contacts,producer_seconds_median,producer_fraction,tree_build_seconds,repetitions,"
-         "hardware_threads,load_average_1min,cpu_seconds_per_sweep,serial_cpu_seconds_per_sweep\n";
+         "hardware_threads,load_average_1min,cpu_seconds_per_sweep,serial_cpu_seconds_per_sweep,"
+         "check\n";
 
   for (int n : s.particles) {
     TriangulatedSpherePackOptions o;
@@ -110,7 +157,19 @@ int main(int argc, char** argv) {
     TriangulatedSpherePack pack = makeTriangulatedSpherePack(o);
     geometry::HybridOptions hybrid;
     hybrid.contactDistance = 0.02 * o.radius;
-    PosedMeshPairCheck check(pack.meshes, hybrid);
+    DentedScene dented;
+    std::unique_ptr<PairCheck> checkPointer;
+    if (s.check == "mesh-contact") {
+      dented = dentedScene(pack, s.triangles, o.radius, 5);
+      for (std::size_t p = 0; p < pack.radius.size(); ++p)
+        pack.radius[p] = dented.shapes[p]->boundingRadius;
+      contact::MeshContactOptions mo;
+      mo.epsilon = hybrid.contactDistance / 2.0;
+      checkPointer = std::make_unique<MeshContactPairCheck>(dented.shapes, dented.poses, mo);
+    } else {
+      checkPointer = std::make_unique<PosedMeshPairCheck>(pack.meshes, hybrid);
+    }
+    const PairCheck& check = *checkPointer;
     Spacetree tree(SpacetreeOptions{hybrid.contactDistance / 2.0, kMaxSpacetreeLevel});
     auto t0 = std::chrono::steady_clock::now();
     tree.build(reinterpret_cast<const double(*)[3]>(pack.centre.data()), pack.radius.data(), n, n);
@@ -158,17 +217,17 @@ int main(int argc, char** argv) {
       const TaskParallelStatistics& st = engines[k]->statistics();
       const double m = median(times[k]);
       const double speedup = oneThread > 0.0 ? oneThread / m : 0.0;
-      csv << n << ',' << pack.meshes.triangleCount(0) << ',' << engines[k]->threads() << ',' << m
+      csv << n << ',' << check.triangleCount(0) << ',' << engines[k]->threads() << ',' << m
           << ',' << *std::min_element(times[k].begin(), times[k].end()) << ','
           << median(serialTimes) << ',' << speedup << ',' << st.pairs << ',' << st.trianglePairs
           << ',' << st.tasks << ',' << st.contacts << ',' << median(producerTimes[k]) << ','
           << median(producerTimes[k]) / m << ',' << buildSeconds << ',' << s.repetitions << ','
           << std::thread::hardware_concurrency() << ',' << loadAverage() << ','
-          << median(cpuTimes[k]) << ',' << median(serialCpuTimes) << '\n';
-      std::printf("%6d particles (%zu triangles each), %d thread(s): %.4f s per sweep (median of "
+          << median(cpuTimes[k]) << ',' << median(serialCpuTimes) << ',' << s.check << '\n';
+      std::printf("%s: %6d particles (%zu triangles each), %d thread(s): %.4f s per sweep (median of "
                   "%d), serial %.4f s, speed-up vs 1 thread %.2f; %llu pairs, %llu triangle pairs, "
                   "%llu tasks, %llu contacts; producer %.4f s; CPU %.4f s (serial %.4f s); load %.2f\n",
-                  n, pack.meshes.triangleCount(0), engines[k]->threads(), m, s.repetitions,
+                  s.check.c_str(), n, check.triangleCount(0), engines[k]->threads(), m, s.repetitions,
                   median(serialTimes), speedup, (unsigned long long)st.pairs,
                   (unsigned long long)st.trianglePairs, (unsigned long long)st.tasks,
                   (unsigned long long)st.contacts, median(producerTimes[k]), median(cpuTimes[k]), median(serialCpuTimes),
