@@ -2,8 +2,8 @@
 // checks a pair itself while sweeping: each candidate pair that passed the prechecks is put
 // into the current task; a task is spawned (fire and forget) as soon as it holds enough triangle
 // pairs to amortise the spawn, and a pair with more triangle pairs than that is split at
-// triangle level (if the check allows it) into several tasks (row ranges of its first particle's triangles). Worker
-// threads steal and run the tasks; each task writes its contacts into a buffer of its own, so
+// triangle level (if the check allows it) into several tasks (row ranges of its first
+// particle's triangles). Worker threads steal and run the tasks; each task writes its contacts into a buffer of its own, so
 // the hot path has no lock and no atomic. At the end of the sweep the producer joins once
 // (task_group::wait, which makes it help with the remaining tasks), then the buffers are
 // concatenated and sorted into the canonical contact order: the result is the same, bit for
@@ -35,7 +35,7 @@ struct TaskParallelStatistics {
   std::uint64_t pairs = 0;          // candidate pairs handed to the checks
   std::uint64_t splitPairs = 0;     // of these, split into several triangle-level tasks
   std::uint64_t tasks = 0;          // tasks spawned
-  std::uint64_t trianglePairs = 0;  // triangle pairs compared
+  std::uint64_t trianglePairs = 0;  // sum of triangleCount(i) * triangleCount(j) over the pairs
   std::uint64_t contacts = 0;       // contacts found
   double producerSeconds = 0.0;     // wall time of the traversal that spawned the tasks
   double sweepSeconds = 0.0;        // wall time of the whole sweep (produce, join, sort)
