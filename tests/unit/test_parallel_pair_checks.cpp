@@ -232,7 +232,7 @@ class WatchingCheck : public PairCheck {
 };
 }  // namespace
 
-TEST(ParallelPairChecks, ProducerNeverRunsAChecksDuringTheSweep) {
+TEST(ParallelPairChecks, ProducerNeverRunsChecksDuringTheSweep) {
   Scene scene(216);
   PosedMeshPairCheck inner(scene.pack.meshes, scene.hybrid);
   for (int threads : {1, 2}) {
