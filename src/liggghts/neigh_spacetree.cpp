@@ -16,6 +16,7 @@
 #include "error.h"
 #include "fix.h"
 #include "fix_contact_history.h"
+#include "fix_spacetree.h"
 #include "force.h"
 #include "modify.h"
 #include "my_page.h"
@@ -91,6 +92,9 @@ void Neighbor::spacetree_init()
     }
   }
 
+  // A fix spacetree (its init() ran before this one) supplies the adaptive grid.
+  spacetree->grid_fix = static_cast<FixSpacetree *>(modify->find_fix_style_strict("spacetree",0));
+
   // Mesh walls (fix neighlist/mesh) read the regular bins filled by the pair builder.
   spacetree->bins_for_meshes = false;
   for (int i = 0; i < modify->nfix; i++)
@@ -135,8 +139,16 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   st.options.epsilon = 0.5*skin;
   try {
     st.tree.setOptions(st.options);
-    st.tree.build(reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL),
-                  contact_radius,nall,nlocal);
+    const double (*xs)[3] = reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL);
+    if (st.grid_fix) {
+      // Ghost velocities exist only with `communicate ... vel yes`; without them the
+      // reluctant grid treats every close pair as approaching (more refinement, same lists).
+      const double (*vs)[3] = (nall && comm->ghost_velocity)
+        ? reinterpret_cast<const double (*)[3]>(atom->v[0]) : NULL;
+      st.grid_fix->build_tree(st.tree,xs,vs,contact_radius,nall,nlocal);
+    } else {
+      st.tree.build(xs,contact_radius,nall,nlocal);
+    }
   } catch (const std::exception &e) {
     error->one(FLERR,e.what());
   }

@@ -11,11 +11,14 @@
 
 namespace LAMMPS_NS {
 
+class FixSpacetree;
+
 class NeighSpacetree {
  public:
   spacetree::SpacetreeOptions options;  // epsilon is set from the skin at each build
   spacetree::Spacetree tree;
   bool bins_for_meshes = false;         // a mesh wall reads Neighbor's bins
+  FixSpacetree *grid_fix = nullptr;     // fix spacetree: persistent adaptive grid (else regular)
 
   // Scratch of the list build, kept between builds to avoid reallocation.
   std::vector<double> contact_radius;   // radius * contact_distance_factor

@@ -263,3 +263,53 @@ TEST(AdaptiveGrid, SpacetreeOnAGivenCubeClampsHostLevelsAndStaysExact) {
   geometry.origin = {0.5, 0.5, 0.5};  // cube misses most particles
   EXPECT_THROW(tree.build(s.pos(), s.r.data(), s.size(), s.size(), geometry, nullptr), std::invalid_argument);
 }
+
+TEST(AdaptiveGrid, LeafCellsTileTheCubeAndHoldEveryParticleAtItsHostLevelOrFiner) {
+  // The leaves of a valid tree partition the root cube: their volumes add up to it, none
+  // overlaps another, and the leaf containing a particle is never coarser than its host level.
+  for (GridType type : {GridType::Regular, GridType::Adaptive, GridType::Reluctant}) {
+    SCOPED_TRACE(spacetree::gridTypeName(type));
+    Scene s = polydisperse(400, 3, 0.012, 25.0, 16);
+    AdaptiveGridOptions options;
+    options.type = type;
+    options.epsilon = 0.0005;
+    AdaptiveGrid grid(options);
+    for (int step = 0; step < 6; ++step) {
+      grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+      s.move(0.01);
+    }
+    grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+    const double root = grid.geometry().rootSize;
+    double volume = 0.0;
+    std::uint64_t leaves = 0;
+    std::set<std::array<std::int64_t, 4>> seen;
+    grid.forEachLeafCell([&](int level, std::int64_t i, std::int64_t j, std::int64_t k) {
+      const double h = grid.meshSize(level);
+      volume += h * h * h;
+      ++leaves;
+      EXPECT_TRUE(seen.insert({level, i, j, k}).second) << "leaf listed twice";
+    });
+    EXPECT_EQ(leaves, grid.leafCellCount());
+    EXPECT_NEAR(volume, root * root * root, 1e-9 * root * root * root);
+    // Each particle centre lies in exactly one leaf (one level of its chain of containing
+    // cells), never above its host level: the host descends only through refined cells.
+    for (int p = 0; p < s.size(); ++p) {
+      int leafLevel = -1, hits = 0;
+      for (int l = 0; l <= grid.geometry().depth; ++l) {
+        const double h = grid.meshSize(l);
+        std::array<std::int64_t, 4> cell{l, 0, 0, 0};
+        for (int d = 0; d < 3; ++d)
+          cell[d + 1] = std::int64_t(std::floor((s.x[p][d] - grid.geometry().origin[d]) / h));
+        if (seen.count(cell)) {
+          leafLevel = l;
+          ++hits;
+        }
+      }
+      ASSERT_EQ(hits, 1) << "particle " << p << " is in " << hits << " leaves";
+      EXPECT_GE(leafLevel, grid.hostLevel(p)) << "particle " << p;
+    }
+    if (type != GridType::Regular) {
+      EXPECT_GT(grid.statistics().deepestLevel, grid.statistics().regularDepth);
+    }
+  }
+}

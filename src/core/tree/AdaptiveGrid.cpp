@@ -388,7 +388,23 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
 
 void AdaptiveGrid::buildSpacetree(Spacetree& tree, const double (*x)[3], const double* radius, int n,
                                   int nActive) const {
-  tree.build(x, radius, n, nActive, geometry_, host_.empty() ? nullptr : host_.data());
+  if (n <= 0 || !haveGeometry_) {
+    tree.build(x, radius, n, nActive);  // nothing to place (e.g. an MPI rank without atoms)
+    return;
+  }
+  tree.build(x, radius, n, nActive, geometry_, host_.data());
+}
+
+std::uint64_t AdaptiveGrid::leafCellCount() const {
+  if (!haveGeometry_) return 0;
+  // Every cell at or below the start-off level is a leaf unless it is refined.
+  const std::uint64_t n = std::uint64_t(cellsPerAxis(regularDepth_));
+  std::uint64_t leaves = n * n * n;
+  for (int l = regularDepth_; l < geometry_.depth; ++l) {
+    leaves -= refined_[l].size();
+    leaves += 27 * refined_[l].size();
+  }
+  return leaves;
 }
 
 void AdaptiveGrid::collectStatistics() {

@@ -64,6 +64,12 @@ class AdaptiveGrid {
   bool isRefinedAt(int level, const double p[3]) const;
   const AdaptiveGridStatistics& statistics() const { return stats_; }
 
+  // Leaf cells (cells that exist and are not refined), for output: f(level, i, j, k) with the
+  // cell's integer coordinates on its level (lower corner origin + (i, j, k) h(level)).
+  template <class F>
+  void forEachLeafCell(F&& f) const;
+  std::uint64_t leafCellCount() const;
+
  private:
   using CellSet = std::unordered_set<std::uint64_t>;
   using Markers = std::unordered_map<std::uint64_t, std::int64_t>;
@@ -106,5 +112,26 @@ class AdaptiveGrid {
   std::vector<std::pair<int, int>> closePairs_;
   AdaptiveGridStatistics stats_;
 };
+
+template <class F>
+void AdaptiveGrid::forEachLeafCell(F&& f) const {
+  if (!haveGeometry_) return;
+  const int depth = geometry_.depth;
+  // The start-off level: every cell exists, the stored refined ones are not leaves.
+  const std::int64_t n = cellsPerAxis(regularDepth_);
+  for (std::int64_t i = 0; i < n; ++i)
+    for (std::int64_t j = 0; j < n; ++j)
+      for (std::int64_t k = 0; k < n; ++k)
+        if (!isRefined(regularDepth_, i, j, k)) f(regularDepth_, i, j, k);
+  // Below it: the children of refined cells that are not refined themselves.
+  for (int l = regularDepth_ + 1; l <= depth; ++l)
+    for (std::uint64_t parentKey : refined_[l - 1]) {
+      const VertexIndex c = unpackVertexKey(parentKey);
+      for (std::int64_t a = 3 * c.i; a < 3 * c.i + 3; ++a)
+        for (std::int64_t b = 3 * c.j; b < 3 * c.j + 3; ++b)
+          for (std::int64_t e = 3 * c.k; e < 3 * c.k + 3; ++e)
+            if (!isRefined(l, a, b, e)) f(l, a, b, e);
+    }
+}
 
 }  // namespace spacetree

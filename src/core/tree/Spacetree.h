@@ -76,6 +76,7 @@ class Spacetree {
   }
 
   int levelOf(int particle) const { return particleLevel_[particle]; }
+  int particleCount() const { return int(particleLevel_.size()); }  // of the last build
   int levelCount() const { return int(levels_.size()); }
   double meshSize(int level) const { return levels_[level].meshSize; }
   double rootSize() const { return rootSize_; }

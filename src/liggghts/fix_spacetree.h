@@ -1,0 +1,60 @@
+/* spacetree-dem: the persistent, dynamically adaptive grid behind `neighbor <skin> spacetree`
+   (paper §5.1; core: src/core/tree/AdaptiveGrid).
+
+     fix ID group spacetree grid regular|adaptive|reluctant [shock S] [threshold T]
+                                 [maxlevel L] [padding P] [vtk N file]
+
+   At every neighbour-list build the builder (neigh_spacetree.cpp) asks this fix to update the
+   grid over the rank's owned + ghost particles (refine, coarsen, re-host) and builds the tree
+   on the grid's cube and host levels. The lists stay exactly bin's for every grid type.
+   vtk N file: every N steps each rank writes its leaf cells as legacy VTK; in `file` a '*' is
+   replaced by the time step and a '%' by the rank (required on more than one rank). */
+
+#ifdef FIX_CLASS
+
+FixStyle(spacetree,FixSpacetree)
+
+#else
+
+#ifndef LMP_FIX_SPACETREE_H
+#define LMP_FIX_SPACETREE_H
+
+#include <memory>
+#include <string>
+
+#include "fix.h"
+#include "tree/AdaptiveGrid.h"
+
+namespace LAMMPS_NS {
+
+class FixSpacetree : public Fix {
+ public:
+  FixSpacetree(class LAMMPS *, int, char **);
+  ~FixSpacetree();
+  int setmask();
+  void init();
+  void end_of_step();
+
+  // Called by the spacetree list builder: update the grid over x[0..nall) (v may be NULL)
+  // and build `tree` on it. Throws what the core throws (bad positions / radii).
+  void build_tree(spacetree::Spacetree &tree, const double (*x)[3], const double (*v)[3],
+                  const double *radius, int nall, int nlocal);
+
+  const spacetree::AdaptiveGrid *grid() const { return grid_.get(); }
+  double last_update_seconds() const { return update_seconds; }
+  int max_level() const { return options.maxLevel; }
+
+ private:
+  void write_vtk();
+
+  spacetree::AdaptiveGridOptions options;
+  std::unique_ptr<spacetree::AdaptiveGrid> grid_;
+  double update_seconds;
+  int vtk_every;
+  std::string vtk_file;
+};
+
+}
+
+#endif
+#endif

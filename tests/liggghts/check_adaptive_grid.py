@@ -1,0 +1,193 @@
+#!/usr/bin/env python3
+"""Regression driver for `fix spacetree grid regular|adaptive|reluctant` and `compute treestats`.
+
+  check_adaptive_grid.py [options] TEST
+
+TEST is one of (see `check_adaptive_grid.py list`):
+  pairs:CASE:NP    a polydisperse deck of the foundation (compare_runs.PAIR_CASES): for each grid
+                   type, the pair sets (compute neigh/local, dumped every 10 of 40 steps, lists
+                   rebuilt every step) of spacetree + fix spacetree on NP ranks equal bin's on NP
+                   ranks (multisets) and on 1 rank (sets); the adaptive grids must refine
+  moving:NP        randomised: a dilute 1:20 continuous gas with fast random velocities
+                   (seed from $SPACETREE_TEST_SEED, default 701), lists rebuilt every step, pairs
+                   dumped every 2 of 240 steps, for all three grid types; the adaptive and
+                   reluctant grids must refine and coarsen on many steps while staying exact
+  bad:NAME         bad input stops with a non-zero exit code and a clear ERROR (BAD_INPUT)
+
+Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.  Reuses compare_runs.py's runner,
+dump parsers and comparisons.
+"""
+
+import argparse
+import os
+import re
+import shutil
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import compare_runs as cr  # noqa: E402
+
+GRIDS = ["regular", "adaptive", "reluctant"]
+DECK = "in.grid_pairs"
+PAIR_CASE_NAMES = ["r10_cont_periodic", "r100_bi_periodic", "r100_cont_walled"]
+
+MOVING_STEPS = 240
+MOVING_DUMP = 2
+
+# name: (fixargs, extra -var settings, regex the ERROR line must match)
+BAD_INPUT = {
+    "gridtype": ("grid bogus", {}, r"ERROR.*fix spacetree.*unknown grid type 'bogus'"),
+    "gridmissing": ("adaptive", {}, r"ERROR.*fix spacetree.*expected 'grid"),
+    "keyword": ("grid reluctant heat 3", {}, r"ERROR.*fix spacetree.*unknown keyword 'heat'"),
+    "novalue": ("grid reluctant shock", {}, r"ERROR.*fix spacetree.*keyword 'shock' needs"),
+    "threshold": ("grid reluctant shock 4 threshold 4", {},
+                  r"ERROR.*fix spacetree.*threshold 4 must be below shock 4"),
+    "maxlevel": ("grid adaptive maxlevel 13", {}, r"ERROR.*fix spacetree.*maxlevel 13"),
+    "noneighbor": ("grid adaptive", {"nstyle": "bin"},
+                   r"ERROR.*[Ff]ix spacetree requires 'neighbor <skin> spacetree'"),
+    "treestats": ("grid adaptive", {"usefix": "0", "usecompute": "1"},
+                  r"ERROR.*[Cc]ompute treestats requires fix spacetree"),
+}
+BAD_DATA = ["bidisperse", "--R", "1", "--n", "4", "--boundary", "p"]
+
+
+def thermo_columns(text):
+    cols, rows = cr.parse_thermo(text)
+    return {c: [r[j] for r in rows] for j, c in enumerate(cols)}
+
+
+def check_grid_runs(R, base, np, periodic, skin, label, min_refining_steps=0):
+    """bin np1 (and npN) reference, then the three grid types; returns per-grid thermo columns."""
+    R.run(DECK, "bin_np1", 1, dict(base, nstyle="bin"))
+    ref = cr.parse_local_dump(os.path.join(R.work, "bin_np1.pairs"))
+    atoms, boxes = cr.parse_atoms_dump(os.path.join(R.work, "bin_np1.atoms"))
+    steps = list(ref.keys())
+    first = ref[steps[0]]
+    changed = len(set(ref[steps[0]]) ^ set(ref[steps[-1]]))
+    print("  bin np1: %d dumped steps, %d distinct pairs at step %d, %d cross-size, %d pair changes"
+          % (len(steps), len(first), steps[0], cr.cross_pairs(first, atoms[steps[0]]), changed))
+    binn = ref
+    if np > 1:
+        R.run(DECK, "bin_np%d" % np, np, dict(base, nstyle="bin"))
+        binn = cr.parse_local_dump(os.path.join(R.work, "bin_np%d.pairs" % np))
+        cr.compare_pairsets("bin np%d vs bin np1 (harness sanity)" % np, ref, binn, False, atoms, boxes,
+                            periodic, skin)
+    stats = {}
+    for grid in GRIDS:
+        tag = "%s_np%d" % (grid, np)
+        rc, text = R.run(DECK, tag, np, dict(base, nstyle="spacetree", usegrid="1", grid=grid))
+        st = cr.parse_local_dump(os.path.join(R.work, tag + ".pairs"))
+        cr.compare_pairsets("%s grid np%d vs bin np%d" % (grid, np, np), binn, st, True, atoms, boxes,
+                            periodic, skin)
+        if np > 1:
+            cr.compare_pairsets("%s grid np%d vs bin np1" % (grid, np), ref, st, False, atoms, boxes,
+                                periodic, skin)
+        th = thermo_columns(text)
+        stats[grid] = th
+        refining = sum(1 for v in th["ts[2]"][1:] if v > 0)
+        coarsening = sum(1 for v in th["ts[3]"][1:] if v > 0)
+        print("  %-9s == bin on %d dumped steps; thermo rows %d: comparisons %d..%d, cells %d..%d, "
+              "deepest level %d..%d, steps refining %d, coarsening %d, refinements %d, coarsenings %d"
+              % (grid, len(steps), len(th["Step"]), min(th["ts[1]"]), max(th["ts[1]"]), min(th["ts[5]"]),
+                 max(th["ts[5]"]), min(th["ts[4]"]), max(th["ts[4]"]), refining, coarsening,
+                 sum(th["ts[2]"]), sum(th["ts[3]"])))
+        if any(int(a) != int(n) for a, n in zip(th["Atoms"], th["ts[8]"])):
+            raise cr.Fail("%s: treestats real particles (sum over ranks) differ from the atom count" % grid)
+        if grid == "regular" and (sum(th["ts[2]"]) or sum(th["ts[3]"])):
+            raise cr.Fail("regular grid reports refinements or coarsenings")
+        if grid != "regular":
+            if th["ts[2]"][0] <= 0:
+                raise cr.Fail("%s grid did not refine at the first build" % grid)
+            if refining < min_refining_steps or coarsening < min_refining_steps:
+                raise cr.Fail("%s grid refined on %d and coarsened on %d steps after the first, "
+                              "expected >= %d each (deck too weak)" % (grid, refining, coarsening,
+                                                                       min_refining_steps))
+    print("  PASS %s: all grid types list bin's pairs on %d rank(s)" % (label, np))
+    return stats
+
+
+def test_pairs(R, case, np):
+    c = cr.PAIR_CASES[case]
+    data = R.gen(case + ".data", c["gen"])
+    base = dict(cr.PAIR_VARS, data=data, bnd=c["bnd"], thermoevery="1")
+    base.update(c.get("vars", {}))
+    check_grid_runs(R, base, np, c["bnd"] == "p", float(base["skin"]), "pairs:%s" % case)
+
+
+def test_moving(R, np):
+    seed = os.environ.get("SPACETREE_TEST_SEED", "701")
+    print("  seed %s (set SPACETREE_TEST_SEED to vary)" % seed)
+    # dilute 1:20 gas, periodic, fast: particles cross many fine cells, pairs form and break
+    gen = ["continuous", "--rmin", "0.5e-3", "--rmax", "1e-2", "--n", "3000", "--fill", "0.25",
+           "--boundary", "p", "--vel", "4.0", "--seed", seed]
+    data = R.gen("moving.data", gen)
+    base = dict(data=data, bnd="p", skin="1e-3", nsteps=str(MOVING_STEPS), dumpevery=str(MOVING_DUMP),
+                thermoevery="1", dt="5e-6")
+    stats = check_grid_runs(R, base, np, True, 1e-3, "moving", min_refining_steps=MOVING_STEPS // 3)
+    cells = {g: sum(stats[g]["ts[5]"]) / len(stats[g]["ts[5]"]) for g in GRIDS}
+    print("  mean cells per step: %s" % ", ".join("%s %.0f" % (g, cells[g]) for g in GRIDS))
+
+
+def test_bad(R, name):
+    fixargs, extra, regex = BAD_INPUT[name]
+    v = dict(extra, data=R.gen("bad.data", BAD_DATA), fixargs=fixargs)
+    if name == "noneighbor":  # control: the same fix with spacetree runs
+        R.run("in.bad_grid", "control", 1, dict(v, nstyle="spacetree"))
+        print("  control run with neighbor spacetree succeeded")
+    rc, text = R.run("in.bad_grid", "bad_" + name, 1, v, expect_ok=False)
+    errs = [l for l in text.splitlines() if "ERROR" in l]
+    print("  rc=%d, ERROR lines: %s" % (rc, errs[:2]))
+    if rc == 0:
+        raise cr.Fail("bad input '%s' did not fail (rc 0)" % name)
+    if not any(re.search(regex, l) for l in errs):
+        raise cr.Fail("bad input '%s': no ERROR line matches /%s/" % (name, regex))
+    print("  PASS (non-zero exit, message matches /%s/)" % regex)
+
+
+def list_tests():
+    t = ["pairs:%s:%d" % (c, n) for c in PAIR_CASE_NAMES for n in (1, 2)]
+    t += ["moving:1", "moving:2"] + ["bad:%s" % n for n in BAD_INPUT]
+    return t
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("test", help="test name, or 'list'")
+    ap.add_argument("--exe", default=os.path.join(cr.ROOT, "build", "liggghts-spacetree"))
+    ap.add_argument("--mpiexec", default=shutil.which("mpirun") or shutil.which("mpiexec"))
+    ap.add_argument("--mpiexec-flags", default="")
+    ap.add_argument("--python", default=None)
+    ap.add_argument("--workdir", default=None)
+    ap.add_argument("--keep", action="store_true")
+    ap.add_argument("--timeout", type=float, default=300.0, help="per LIGGGHTS run (s)")
+    a = ap.parse_args()
+    if a.test == "list":
+        print("\n".join(list_tests()))
+        return 0
+    if a.workdir is None:
+        a.workdir = os.path.join(cr.ROOT, "build", "tests-liggghts", "grid_" + a.test.replace(":", "_"))
+    parts = a.test.split(":")
+    print("test %s (exe %s)" % (a.test, a.exe))
+    t0 = time.time()
+    try:
+        R = cr.Runner(a)
+        if parts[0] == "pairs" and len(parts) == 3 and parts[1] in cr.PAIR_CASES:
+            test_pairs(R, parts[1], int(parts[2]))
+        elif parts[0] == "moving" and len(parts) == 2:
+            test_moving(R, int(parts[1]))
+        elif parts[0] == "bad" and len(parts) == 2 and parts[1] in BAD_INPUT:
+            test_bad(R, parts[1])
+        else:
+            print("unknown test '%s'; known:\n  %s" % (a.test, "\n  ".join(list_tests())))
+            return 2
+    except cr.Fail as e:
+        print("FAIL %s (%.1fs)\n%s" % (a.test, time.time() - t0, e))
+        return 1
+    print("ok %s (%.1fs)" % (a.test, time.time() - t0))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
