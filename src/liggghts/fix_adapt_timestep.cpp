@@ -1,35 +1,58 @@
-/* spacetree-dem: see fix_adapt_timestep.h */
+/* spacetree-dem: see fix_adapt_timestep.h and docs/fix_adapt_timestep.md */
 
 #include "fix_adapt_timestep.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
+#include "fix_wall_gran.h"
 #include "force.h"
 #include "granular_list_copy.h"
 #include "modify.h"
 #include "neigh_list.h"
 #include "neigh_spacetree.h"
 #include "neighbor.h"
-#include "pair.h"
+#include "pair_gran.h"
+#include "primitive_wall.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
+namespace {
+bool yes_no(Error *error, const char *keyword, const char *value)
+{
+  if (strcmp(value,"yes") == 0) return true;
+  if (strcmp(value,"no") != 0) {
+    char msg[256];
+    snprintf(msg,sizeof(msg),"Illegal fix adapt/timestep command: %s must be yes or no",keyword);
+    error->all(FLERR,msg);
+  }
+  return false;
+}
+}
+
 FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), dtmin_set(false), dtmax_set(false), veto_on(true), safety(0.8),
-  list(NULL), history(NULL), vetoed_steps(0), floored_steps(0), critical_last(0)
+  Fix(lmp, narg, arg), dtmin_set(false), dtmax_set(false), dtmax_captured(false), veto_on(true),
+  rollback_on(false), safety(0.8), eps(0.0), list(NULL), history(NULL),
+  vetoed_steps(0), floored_steps(0), critical_last(0), rollbacks(0), rollbacks_failed(0),
+  rollbacks_rebuilt(0),
+  overlap_now(0), overlap_peak(0), contacts_now(0), warned_floor(false), warned_exhausted(false),
+  warned_refused(false), redoing(false), saved_step(-1), nsaved(0), h_inum(-1), h_step(-1),
+  x_build_step(-1)
 {
   if (narg < 5 || strcmp(arg[3],"creep") != 0)
     error->all(FLERR,"Illegal fix adapt/timestep command: expected 'creep C' after the style");
   policy.creep = force->numeric(FLERR,arg[4]);
   if (!(policy.creep >= 1.0)) error->all(FLERR,"Illegal fix adapt/timestep command: creep must be >= 1");
 
+  bool dtcontact_set = false, penetration_set = false;
   int iarg = 5;
   while (iarg < narg) {
     if (iarg+2 > narg) {
@@ -43,14 +66,31 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
     } else if (strcmp(arg[iarg],"dtmax") == 0) {
       policy.dtMax = force->numeric(FLERR,arg[iarg+1]);
       dtmax_set = true;
+    } else if (strcmp(arg[iarg],"dtcontact") == 0) {
+      policy.dtContact = force->numeric(FLERR,arg[iarg+1]);
+      dtcontact_set = true;
+      if (!(policy.dtContact > 0.0))
+        error->all(FLERR,"Illegal fix adapt/timestep command: dtcontact must be > 0");
+    } else if (strcmp(arg[iarg],"eps") == 0) {
+      eps = force->numeric(FLERR,arg[iarg+1]);
+      if (!(eps >= 0.0)) error->all(FLERR,"Illegal fix adapt/timestep command: eps must be >= 0");
     } else if (strcmp(arg[iarg],"veto") == 0) {
-      if (strcmp(arg[iarg+1],"yes") == 0) veto_on = true;
-      else if (strcmp(arg[iarg+1],"no") == 0) veto_on = false;
-      else error->all(FLERR,"Illegal fix adapt/timestep command: veto must be yes or no");
+      veto_on = yes_no(error,"veto",arg[iarg+1]);
     } else if (strcmp(arg[iarg],"safety") == 0) {
       safety = force->numeric(FLERR,arg[iarg+1]);
       if (!(safety > 0.0 && safety <= 1.0))
         error->all(FLERR,"Illegal fix adapt/timestep command: safety must be in (0,1]");
+    } else if (strcmp(arg[iarg],"rollback") == 0) {
+      rollback_on = yes_no(error,"rollback",arg[iarg+1]);
+    } else if (strcmp(arg[iarg],"penetration") == 0) {
+      rollback.fraction = force->numeric(FLERR,arg[iarg+1]);
+      penetration_set = true;
+      if (!(rollback.fraction > 0.0))
+        error->all(FLERR,"Illegal fix adapt/timestep command: penetration must be > 0");
+    } else if (strcmp(arg[iarg],"retries") == 0) {
+      rollback.maxRetries = force->inumeric(FLERR,arg[iarg+1]);
+      if (rollback.maxRetries < 1)
+        error->all(FLERR,"Illegal fix adapt/timestep command: retries must be >= 1");
     } else if (strcmp(arg[iarg],"file") == 0) {
       if (comm->me == 0) {
         history = fopen(arg[iarg+1],"w");
@@ -59,12 +99,12 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
           snprintf(msg,sizeof(msg),"Fix adapt/timestep cannot open file '%s'",arg[iarg+1]);
           error->one(FLERR,msg);
         }
-        fprintf(history,"# step time dt critical_pairs vetoed floored\n");
+        fprintf(history,"# step time dt critical_pairs vetoed floored max_overlap contacts rollbacks list_margin last_build\n");
       }
     } else {
       char msg[256];
-      snprintf(msg,sizeof(msg),"Illegal fix adapt/timestep command: unknown keyword '%s' "
-               "(known: dtmin dtmax veto safety file)",arg[iarg]);
+      snprintf(msg,sizeof(msg),"Illegal fix adapt/timestep command: unknown keyword '%s' (known: dtmin "
+               "dtmax dtcontact eps veto safety rollback penetration retries file)",arg[iarg]);
       error->all(FLERR,msg);
     }
     iarg += 2;
@@ -75,11 +115,19 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR,"Illegal fix adapt/timestep command: dtmax must be > 0");
   if (dtmin_set && dtmax_set && policy.dtMin > policy.dtMax)
     error->all(FLERR,"Illegal fix adapt/timestep command: dtmin exceeds dtmax");
+  if (dtcontact_set && dtmin_set && policy.dtContact < policy.dtMin)
+    error->all(FLERR,"Illegal fix adapt/timestep command: dtcontact is below dtmin");
+  if (rollback_on && !(eps > 0.0))
+    error->all(FLERR,"Illegal fix adapt/timestep command: rollback yes needs eps > 0 (the allowed overlap)");
+  if (penetration_set && !rollback_on)
+    error->all(FLERR,"Illegal fix adapt/timestep command: penetration is a rollback setting (add rollback yes)");
 
   time_depend = 1;   // elapsed time is accumulated with update_time() before each change
+  force_reneighbor = 1;   // an early list rebuild keeps every pair that can touch in the list
+  next_reneighbor = -1;
   scalar_flag = 1;
   vector_flag = 1;
-  size_vector = 4;
+  size_vector = 10;
   global_freq = 1;
   extscalar = 0;
   extvector = 0;
@@ -92,21 +140,41 @@ FixAdaptTimestep::~FixAdaptTimestep()
 
 int FixAdaptTimestep::setmask()
 {
-  return END_OF_STEP;
+  int mask = END_OF_STEP;
+  if (rollback_on) mask |= PRE_FORCE;   // snapshot of the contact history before the pair forces
+  return mask;
 }
 
 void FixAdaptTimestep::init()
 {
   if (!atom->radius_flag || !atom->rmass_flag)
     error->all(FLERR,"Fix adapt/timestep requires an atom style with radius and mass (granular)");
-  if (!dtmax_set) policy.dtMax = update->dt;    // the deck's timestep is the ceiling
+  // the deck's timestep is the ceiling, taken once: a later run must not inherit the adapted dt
+  if (!dtmax_set && !dtmax_captured) policy.dtMax = update->dt;
+  dtmax_captured = true;
   if (!dtmin_set) policy.dtMin = 1e-3*policy.dtMax;
   if (policy.dtMin > policy.dtMax)
     error->all(FLERR,"Fix adapt/timestep: dtmin exceeds dtmax");
-  if (veto_on) {
-    if (force->pair == NULL)
-      error->all(FLERR,"Fix adapt/timestep veto needs a granular pair style (or use veto no)");
+  if (policy.dtContact > policy.dtMax)
+    error->warning(FLERR,"Fix adapt/timestep: dtcontact exceeds dtmax and has no effect");
+  if (force->pair == NULL || dynamic_cast<PairGran*>(force->pair) == NULL) {
+    if (veto_on || rollback_on || policy.dtContact > 0.0)
+      error->all(FLERR,"Fix adapt/timestep veto, rollback and dtcontact need a granular pair style "
+                 "(or use veto no without them)");
+  } else {
     request_granular_list_copy(neighbor,this,GranularListUser::Fix);
+  }
+  if (update->whichflag == 1 && strncmp(update->integrate_style,"verlet",6) != 0)
+    error->all(FLERR,"Fix adapt/timestep needs run_style verlet");
+  // the skin/2 cap only keeps the lists valid when they are rebuilt as soon as they may be stale
+  if (neighbor->every > 1 || neighbor->delay > 0 || !neighbor->dist_check)
+    error->warning(FLERR,"Fix adapt/timestep: with neigh_modify every > 1, delay > 0 or check no the "
+                   "skin/2-per-step cap does not keep the neighbour lists valid");
+  if (rollback_on) {
+    for (int i = 0; i < modify->nfix; i++)
+      if (modify->fix[i]->time_depend && modify->fix[i] != this)
+        error->all(FLERR,"Fix adapt/timestep rollback cannot be combined with another fix that "
+                   "changes the time step");
   }
 }
 
@@ -117,19 +185,103 @@ void FixAdaptTimestep::init_list(int, NeighList *ptr)
 
 void FixAdaptTimestep::setup(int)
 {
-  choose_timestep();
+  track_list_build();
+  spacetree::TimestepVeto veto(0.0,safety,eps);
+  const PairScan scan = scan_pairs(veto_on ? &veto : NULL);
+  overlap_now = scan.maxOverlap;
+  overlap_peak = std::max(overlap_peak,overlap_now);
+  contacts_now = scan.contacts;
+  choose_timestep(scan,veto.limit());
+  if (rollback_on) save_state();
 }
 
-void FixAdaptTimestep::end_of_step()
+/* The deepest overlap and the number of contacts over the group's pairs, and the veto over the
+   approaching ones (tested against the largest step creep can give). Own/ghost pairs appear on
+   both ranks: they count half on each. */
+
+FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto *veto)
 {
-  choose_timestep();
+  double local[4] = {0.0,0.0,0.0,0.0};   // max overlap, contacts, critical pairs, contact soon
+  if (list) {
+    neighbor->build_one(list->index);
+    double **x = atom->x;
+    double **v = atom->v;
+    double *radius = atom->radius;
+    int *mask = atom->mask;
+    const int nlocal = atom->nlocal;
+    const double dt_test = policy.creep*update->dt;
+    for (int ii = 0; ii < list->inum; ii++) {
+      const int i = list->ilist[ii];
+      const int *jlist = list->firstneigh[i];
+      for (int jj = 0; jj < list->numneigh[i]; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) continue;
+        const double share = j < nlocal ? 1.0 : 0.5;
+        const double dx = x[j][0]-x[i][0], dy = x[j][1]-x[i][1], dz = x[j][2]-x[i][2];
+        const double dist = std::sqrt(dx*dx + dy*dy + dz*dz);
+        const double overlap = radius[i] + radius[j] - dist;
+        if (overlap > 0.0) {
+          local[0] = std::max(local[0],overlap);
+          local[1] += share;
+        } else if (policy.dtContact > 0.0 && dist > 0.0) {
+          // a pair that may touch within the next step already needs the contact resolution
+          const double approach = -((v[j][0]-v[i][0])*dx + (v[j][1]-v[i][1])*dy + (v[j][2]-v[i][2])*dz)/dist;
+          if (approach*dt_test > -overlap) local[3] = 1.0;
+        }
+        if (veto && veto->consider(x[i],v[i],radius[i],x[j],v[j],radius[j],dt_test)) local[2] += share;
+      }
+    }
+  }
+  // primitive walls (fix wall/gran ... primitive): each local particle against the wall's
+  // closest point, treated as a sphere of radius 0 at rest (moving primitives: overlap only)
+  {
+    double **x = atom->x;
+    double **v = atom->v;
+    double *radius = atom->radius;
+    int *mask = atom->mask;
+    const double dt_test = policy.creep*update->dt;
+    const double rest[3] = {0.0,0.0,0.0};
+    for (int f = 0; f < modify->nfix; f++) {
+      if (strcmp(modify->fix[f]->style,"wall/gran") != 0) continue;
+      FixWallGran *wall = static_cast<FixWallGran*>(modify->fix[f]);
+      if (wall->is_mesh_wall() || !wall->primitiveWall()) continue;
+      const bool moving = wall->is_moving();
+      for (int i = 0; i < atom->nlocal; i++) {
+        if (!(mask[i] & groupbit)) continue;
+        double delta[3];
+        const double gap = wall->primitiveWall()->resolveContact(x[i],radius[i],delta);
+        if (gap < 0.0) {
+          local[0] = std::max(local[0],-gap);
+          local[1] += 1.0;
+          continue;
+        }
+        if (moving) continue;
+        const double xw[3] = {x[i][0]+delta[0],x[i][1]+delta[1],x[i][2]+delta[2]};
+        const double dist = std::sqrt(delta[0]*delta[0] + delta[1]*delta[1] + delta[2]*delta[2]);
+        if (policy.dtContact > 0.0 && dist > 0.0) {
+          const double approach = (v[i][0]*delta[0] + v[i][1]*delta[1] + v[i][2]*delta[2])/dist;
+          if (approach*dt_test > gap) local[3] = 1.0;
+        }
+        if (veto && veto->consider(x[i],v[i],radius[i],xw,rest,0.0,dt_test)) local[2] += 1.0;
+      }
+    }
+  }
+
+  double global[4];
+  MPI_Allreduce(&local[0],&global[0],1,MPI_DOUBLE,MPI_MAX,world);
+  MPI_Allreduce(&local[1],&global[1],2,MPI_DOUBLE,MPI_SUM,world);
+  MPI_Allreduce(&local[3],&global[3],1,MPI_DOUBLE,MPI_MAX,world);
+  critical_last = global[2];
+  PairScan scan;
+  scan.maxOverlap = global[0];
+  scan.contacts = global[1];
+  scan.contactSoon = global[1] > 0.0 || global[3] > 0.0;
+  return scan;
 }
 
-void FixAdaptTimestep::choose_timestep()
+void FixAdaptTimestep::choose_timestep(const PairScan &scan, double veto_limit_local)
 {
-  double **x = atom->x;
   double **v = atom->v;
-  double *radius = atom->radius;
   const int nlocal = atom->nlocal;
   const double dt = update->dt;
 
@@ -138,55 +290,261 @@ void FixAdaptTimestep::choose_timestep()
     if (!(atom->mask[i] & groupbit)) continue;
     vmax_local = std::max(vmax_local,v[i][0]*v[i][0] + v[i][1]*v[i][1] + v[i][2]*v[i][2]);
   }
-  double vmax;
+  double vmax, veto_limit;
   MPI_Allreduce(&vmax_local,&vmax,1,MPI_DOUBLE,MPI_MAX,world);
+  MPI_Allreduce(&veto_limit_local,&veto_limit,1,MPI_DOUBLE,MPI_MIN,world);
   vmax = std::sqrt(vmax);
 
   spacetree::TimestepLimits limits;
   limits.maxSpeed = vmax;
   limits.skin = neighbor->skin;
+  limits.halo = 2.0*eps;
+  limits.inContact = scan.contactSoon;
+  limits.listMargin = list_margin();
+  // keep at least half the skin as look-ahead: rebuild the lists in the next step when less is left
+  if (limits.listMargin < 0.5*neighbor->skin) next_reneighbor = update->ntimestep + 1;
   if (neighbor->spacetree && neighbor->spacetree->tree.statistics().deepestPopulatedLevel >= 0)
     limits.finestCell = neighbor->spacetree->tree.meshSize(
         neighbor->spacetree->tree.statistics().deepestPopulatedLevel);
 
-  // spheres touch at their surfaces: no halo beyond the contact radius
-  spacetree::TimestepVeto veto(0.0,safety);
-  if (veto_on && list) {
-    neighbor->build_one(list->index);
-    const double cdf = neighbor->contactDistanceFactor;
-    for (int ii = 0; ii < list->inum; ii++) {
-      const int i = list->ilist[ii];
-      const int *jlist = list->firstneigh[i];
-      for (int jj = 0; jj < list->numneigh[i]; jj++) {
-        const int j = jlist[jj] & NEIGHMASK;
-        if (!(atom->mask[i] & groupbit) && !(atom->mask[j] & groupbit)) continue;
-        veto.consider(x[i],v[i],radius[i]*cdf,x[j],v[j],radius[j]*cdf,dt);
-      }
-    }
-  }
-  double limit_local = veto.limit(), limit;
-  MPI_Allreduce(&limit_local,&limit,1,MPI_DOUBLE,MPI_MIN,world);
-  double critical_local = double(veto.criticalPairs());
-  MPI_Allreduce(&critical_local,&critical_last,1,MPI_DOUBLE,MPI_SUM,world);
-
-  const spacetree::TimestepDecision d = spacetree::nextTimestep(dt,policy,limits,limit);
+  const spacetree::TimestepDecision d = spacetree::nextTimestep(dt,policy,limits,veto_limit);
   if (d.vetoed) vetoed_steps += 1;
   if (d.floored) {
-    if (floored_steps == 0 && comm->me == 0)
+    if (!warned_floor && comm->me == 0)
       error->warning(FLERR,"Fix adapt/timestep hit dtmin: a critical approach or the speed cap "
                      "asked for a smaller step (counted in f_ID[4])");
+    warned_floor = true;
     floored_steps += 1;
   }
   if (history && comm->me == 0)
-    fprintf(history,BIGINT_FORMAT " %.12g %.12g %g %d %d\n",update->ntimestep,
+    fprintf(history,BIGINT_FORMAT " %.12g %.12g %g %d %d %.6g %g %g %.6g " BIGINT_FORMAT "\n",update->ntimestep,
             update->atime + (update->ntimestep - update->atimestep)*dt,d.dt,critical_last,
-            int(d.vetoed),int(d.floored));
+            int(d.vetoed),int(d.floored),scan.maxOverlap,scan.contacts,rollbacks,limits.listMargin,
+            neighbor->lastcall);
+  if (d.dt != dt) set_dt(d.dt);
+}
 
-  if (d.dt == dt) return;
+/* Positions at the last list build: a rebuild happens after initial_integrate, so the positions
+   at the end of that step are the ones the list was built from. */
+
+void FixAdaptTimestep::track_list_build()
+{
+  if (neighbor->lastcall == x_build_step) return;
+  x_build_step = neighbor->lastcall;
+  const int nlocal = atom->nlocal;
+  x_build.resize(3*nlocal);
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < 3; k++) x_build[3*i+k] = atom->x[i][k];
+}
+
+/* skin - 2 * largest displacement since the list was built (all ranks): a pair outside the list
+   is at least this far from touching. */
+
+double FixAdaptTimestep::list_margin()
+{
+  const int nlocal = atom->nlocal;
+  double dmax_local = 0.0, dmax;
+  if (int(x_build.size()) != 3*nlocal) dmax_local = 0.5*neighbor->skin;   // atoms came or went
+  else
+    for (int i = 0; i < nlocal; i++) {
+      const double dx = atom->x[i][0]-x_build[3*i], dy = atom->x[i][1]-x_build[3*i+1],
+                   dz = atom->x[i][2]-x_build[3*i+2];
+      dmax_local = std::max(dmax_local,dx*dx + dy*dy + dz*dz);
+    }
+  if (int(x_build.size()) == 3*nlocal) dmax_local = std::sqrt(dmax_local);
+  MPI_Allreduce(&dmax_local,&dmax,1,MPI_DOUBLE,MPI_MAX,world);
+  return std::max(neighbor->skin - 2.0*dmax,1e-3*neighbor->skin);
+}
+
+void FixAdaptTimestep::set_dt(double dt)
+{
   update->update_time();
-  update->dt = d.dt;
+  update->dt = dt;
   if (force->pair) force->pair->reset_dt();
   for (int i = 0; i < modify->nfix; i++) modify->fix[i]->reset_dt();
+}
+
+void FixAdaptTimestep::pre_force(int)
+{
+  if (!redoing) save_history();
+}
+
+void FixAdaptTimestep::end_of_step()
+{
+  track_list_build();
+  spacetree::TimestepVeto veto(0.0,safety,eps);
+  PairScan scan = scan_pairs(veto_on ? &veto : NULL);
+
+  if (rollback_on) {
+    for (int retries = 0; ; retries++) {
+      const spacetree::RollbackDecision d = spacetree::judgeStep(rollback,eps,overlap_now,
+          scan.maxOverlap,update->dt,policy.dtMin,retries);
+      if (d.exhausted) {
+        rollbacks_failed += 1;
+        if (!warned_exhausted && comm->me == 0)
+          error->warning(FLERR,"Fix adapt/timestep rollback: an overlap stays deeper than penetration*eps "
+                         "at dtmin or after the last retry; step accepted (counted in f_ID[6])");
+        warned_exhausted = true;
+      }
+      if (!d.redo) break;
+      if (!restore_state()) {
+        rollbacks_failed += 1;
+        if (!warned_refused && comm->me == 0)
+          error->warning(FLERR,"Fix adapt/timestep rollback refused: atoms changed rank or number during a "
+                         "re-neighbouring step; step accepted (counted in f_ID[6])");
+        warned_refused = true;
+        break;
+      }
+      restore_history();
+      // the steps before this one keep their dt in the elapsed time; this one gets d.dt
+      const bigint now = update->ntimestep;
+      update->ntimestep = now - 1;
+      set_dt(d.dt);
+      update->ntimestep = now;
+      if (neighbor->lastcall > saved_step) rollbacks_rebuilt += 1;
+      redo_step();
+      rollbacks += 1;
+      veto.reset();
+      scan = scan_pairs(veto_on ? &veto : NULL);
+    }
+  }
+
+  overlap_now = scan.maxOverlap;
+  overlap_peak = std::max(overlap_peak,overlap_now);
+  contacts_now = scan.contacts;
+  choose_timestep(scan,veto.limit());
+  if (rollback_on) save_state();
+}
+
+/* The state at the start of the next step: what initial_integrate reads (x, v, omega, f,
+   torque) and the image flags, by tag so that a step that re-neighboured (sorted atoms) can
+   still be undone. */
+
+void FixAdaptTimestep::save_state()
+{
+  const int nlocal = atom->nlocal;
+  nsaved = nlocal;
+  saved_step = update->ntimestep;
+  s_tag.assign(atom->tag,atom->tag + nlocal);
+  s_image.assign(atom->image,atom->image + nlocal);
+  s_x.resize(3*nlocal);
+  s_v.resize(3*nlocal);
+  s_omega.resize(3*nlocal);
+  s_f.resize(3*nlocal);
+  s_torque.resize(3*nlocal);
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < 3; k++) {
+      s_x[3*i+k] = atom->x[i][k];
+      s_v[3*i+k] = atom->v[i][k];
+      s_omega[3*i+k] = atom->omega[i][k];
+      s_f[3*i+k] = atom->f[i][k];
+      s_torque[3*i+k] = atom->torque[i][k];
+    }
+}
+
+bool FixAdaptTimestep::restore_state()
+{
+  const int nlocal = atom->nlocal;
+  const bool rebuilt = neighbor->lastcall > saved_step;
+  std::vector<int> where(nsaved,-1);
+  int ok = (nlocal == nsaved && saved_step == update->ntimestep - 1) ? 1 : 0;
+  for (int k = 0; ok && k < nsaved; k++) {
+    int i = -1;
+    if (!rebuilt) i = (atom->tag[k] == s_tag[k]) ? k : -1;
+    else if (atom->map_style) i = atom->map(s_tag[k]);
+    if (i < 0 || i >= nlocal) ok = 0;
+    else where[k] = i;
+  }
+  int all_ok;
+  MPI_Allreduce(&ok,&all_ok,1,MPI_INT,MPI_MIN,world);
+  if (!all_ok) return false;
+
+  for (int k = 0; k < nsaved; k++) {
+    const int i = where[k];
+    // a re-neighbouring step may have wrapped the atom through a periodic boundary: keep its
+    // current image and shift the saved position into that image
+    double unwrapped[3], shift[3], zero[3] = {0.0,0.0,0.0};
+    domain->unmap(&s_x[3*k],s_image[k],unwrapped);
+    domain->unmap(zero,atom->image[i],shift);
+    for (int d = 0; d < 3; d++) {
+      atom->x[i][d] = unwrapped[d] - shift[d];
+      atom->v[i][d] = s_v[3*k+d];
+      atom->omega[i][d] = s_omega[3*k+d];
+      atom->f[i][d] = s_f[3*k+d];
+      atom->torque[i][d] = s_torque[3*k+d];
+    }
+  }
+  comm->forward_comm();   // ghosts take the restored positions and velocities
+  return true;
+}
+
+/* Contact history as the pair style holds it in the history list's pages: saved before the pair
+   forces of each step (after any re-neighbouring, which refills the pages from the per-atom
+   copy that fix contacthistory took at the start of the step). */
+
+void FixAdaptTimestep::save_history()
+{
+  h_step = update->ntimestep;
+  h_inum = -1;
+  Pair *pair = force->pair;
+  PairGran *pg = dynamic_cast<PairGran*>(pair);
+  if (!pg || !pair->list || !pair->listgranhistory) return;
+  NeighList *gl = pair->list, *hl = pair->listgranhistory;
+  const int dnum = pg->dnum();
+  h_flag.clear();
+  h_value.clear();
+  for (int ii = 0; ii < gl->inum; ii++) {
+    const int i = gl->ilist[ii];
+    const int n = gl->numneigh[i];
+    h_flag.insert(h_flag.end(),hl->firstneigh[i],hl->firstneigh[i] + n);
+    h_value.insert(h_value.end(),hl->firstdouble[i],hl->firstdouble[i] + dnum*n);
+  }
+  h_inum = gl->inum;
+}
+
+void FixAdaptTimestep::restore_history()
+{
+  Pair *pair = force->pair;
+  PairGran *pg = dynamic_cast<PairGran*>(pair);
+  if (!pg || !pair->list || !pair->listgranhistory) return;
+  if (h_step != update->ntimestep || h_inum != pair->list->inum)
+    error->one(FLERR,"Fix adapt/timestep rollback: contact-history snapshot does not match the list");
+  NeighList *gl = pair->list, *hl = pair->listgranhistory;
+  const int dnum = pg->dnum();
+  size_t nf = 0, nv = 0;
+  for (int ii = 0; ii < gl->inum; ii++) {
+    const int i = gl->ilist[ii];
+    const int n = gl->numneigh[i];
+    std::copy(h_flag.begin() + nf,h_flag.begin() + nf + n,hl->firstneigh[i]);
+    std::copy(h_value.begin() + nv,h_value.begin() + nv + dnum*n,hl->firstdouble[i]);
+    nf += n;
+    nv += dnum*n;
+  }
+}
+
+/* One velocity-Verlet step as Verlet::run does it, without re-neighbouring (the lists of this
+   step stay valid: the redo moves every particle less than the rejected step did). */
+
+void FixAdaptTimestep::redo_step()
+{
+  redoing = true;
+  if (modify->n_pre_initial_integrate) modify->pre_initial_integrate();
+  modify->initial_integrate(0);
+  if (modify->n_post_integrate) modify->post_integrate();
+  comm->forward_comm();
+
+  const size_t nall = atom->nlocal + atom->nghost;
+  if (nall) {
+    memset(&atom->f[0][0],0,3*nall*sizeof(double));
+    if (atom->torque_flag) memset(&atom->torque[0][0],0,3*nall*sizeof(double));
+  }
+  if (modify->n_pre_force) modify->pre_force(0);
+  force->pair->compute(0,0);
+  if (force->newton) comm->reverse_comm();
+  if (modify->n_post_force) modify->post_force(0);
+  if (modify->n_pre_final_integrate) modify->pre_final_integrate();
+  modify->final_integrate();
+  redoing = false;
 }
 
 double FixAdaptTimestep::compute_scalar()
@@ -196,8 +554,16 @@ double FixAdaptTimestep::compute_scalar()
 
 double FixAdaptTimestep::compute_vector(int n)
 {
-  if (n == 0) return update->dt;
-  if (n == 1) return vetoed_steps;
-  if (n == 2) return critical_last;
-  return floored_steps;
+  switch (n) {
+    case 0: return update->dt;
+    case 1: return vetoed_steps;
+    case 2: return critical_last;
+    case 3: return floored_steps;
+    case 4: return rollbacks;
+    case 5: return rollbacks_failed;
+    case 6: return overlap_now;
+    case 7: return overlap_peak;
+    case 8: return contacts_now;
+    default: return rollbacks_rebuilt;
+  }
 }

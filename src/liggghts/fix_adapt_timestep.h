@@ -1,14 +1,16 @@
-/* spacetree-dem: adaptive global time step with a veto on critical approaches
-   (paper §5.2; core: src/core/dynamics). Before every step:
-     dt <- min(C dt, dtmax, (h_min + halo)/v_max, skin/(2 v_max))
-   and, if an approaching pair of the granular neighbour list would close its gap within dt,
-   dt <- safety * gap / closing speed (smallest over all such pairs), never below dtmin.
+/* spacetree-dem: adaptive global time step with a veto on critical approaches and an optional
+   rollback of steps that penetrate too deep (paper §5.2; core: src/core/dynamics). Before
+   every step:
+     dt <- min(C dt, dtmax, [dtcontact while pairs overlap], (h_min + 2 eps)/v_max, skin/(2 v_max))
+   and, if an approaching pair of the granular neighbour list would penetrate deeper than eps
+   within dt, dt <- safety * (gap + eps) / closing speed (smallest over all such pairs), never
+   below dtmin. With rollback yes, a step after which some overlap exceeds `penetration` * eps
+   is undone and redone with half the step.
 
-     fix ID group adapt/timestep creep C [dtmin X] [dtmax X] [veto yes|no] [safety S] [file F]
+     fix ID group adapt/timestep creep C [dtmin X] [dtmax X] [dtcontact X] [eps X] [veto yes|no]
+         [safety S] [rollback yes|no] [penetration F] [retries N] [file F]
 
-   Defaults: dtmax = the `timestep` of the deck, dtmin = dtmax/1000, veto yes, safety 0.8.
-   Output: f_ID = current dt; f_ID[1] dt, f_ID[2] steps cut by the veto, f_ID[3] critical
-   pairs of the last step, f_ID[4] steps that hit dtmin. */
+   Output (docs/fix_adapt_timestep.md): f_ID = current dt; f_ID[1..10]. */
 
 #ifdef FIX_CLASS
 
@@ -20,8 +22,10 @@ FixStyle(adapt/timestep,FixAdaptTimestep)
 #define LMP_FIX_ADAPT_TIMESTEP_H
 
 #include <cstdio>
+#include <vector>
 
 #include "dynamics/AdaptiveTimestep.h"
+#include "dynamics/TimestepRollback.h"
 #include "dynamics/TimestepVeto.h"
 #include "fix.h"
 
@@ -35,20 +39,51 @@ class FixAdaptTimestep : public Fix {
   void init();
   void init_list(int, class NeighList *);
   void setup(int);
+  void pre_force(int);
   void end_of_step();
   double compute_scalar();
   double compute_vector(int);
 
  private:
-  void choose_timestep();
+  struct PairScan { double maxOverlap; double contacts; bool contactSoon; };
+  PairScan scan_pairs(spacetree::TimestepVeto *veto);
+  void choose_timestep(const PairScan &scan, double critical);
+  void set_dt(double dt);
+  bool rollback_and_redo(double dt_redo);
+  void save_state();
+  bool restore_state();
+  void save_history();
+  void restore_history();
+  void redo_step();
+  void track_list_build();
+  double list_margin();
 
   spacetree::TimestepPolicy policy;
-  bool dtmin_set, dtmax_set, veto_on;
-  double safety;
+  spacetree::RollbackPolicy rollback;
+  bool dtmin_set, dtmax_set, dtmax_captured, veto_on, rollback_on;
+  double safety, eps;
   class NeighList *list;
   FILE *history;
 
-  double vetoed_steps, floored_steps, critical_last;
+  // counters (f_ID[k])
+  double vetoed_steps, floored_steps, critical_last, rollbacks, rollbacks_failed, rollbacks_rebuilt;
+  double overlap_now, overlap_peak, contacts_now;
+  bool warned_floor, warned_exhausted, warned_refused, redoing;
+
+  // state at the start of the current step (rollback)
+  bigint saved_step;
+  int nsaved;
+  std::vector<int> s_tag;
+  std::vector<double> s_x, s_v, s_omega, s_f, s_torque;
+  std::vector<tagint> s_image;   // atom->image is a tagint in LIGGGHTS 3.8
+  std::vector<int> h_flag;
+  std::vector<double> h_value;
+  int h_inum;
+  bigint h_step;
+
+  // positions at the last neighbour-list build (Neighbor::xhold is not public)
+  std::vector<double> x_build;
+  bigint x_build_step;
 };
 
 }

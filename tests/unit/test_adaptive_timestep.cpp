@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "dynamics/AdaptiveTimestep.h"
+#include "dynamics/TimestepRollback.h"
 #include "dynamics/TimestepVeto.h"
 
 using namespace spacetree;
@@ -169,4 +170,107 @@ TEST(AdaptiveTimestep, ElasticCollisionConservesEnergy) {
   const CollisionResult res = collide(1e5, 0.0, 1.0 / 2000.0, 1e-8);
   EXPECT_NEAR(res.energyRatio, 1.0, 1e-6);
   EXPECT_NEAR(res.restitution, 1.0, 1e-3);
+}
+
+TEST(TimestepVeto, AllowedOverlapLetsAPairEnterContactUpToEps) {
+  const double eps = 1e-4;
+  TimestepVeto veto(0.0, 0.5, eps);
+  const double xj[3] = {0.02 + 1e-4, 0.0, 0.0};  // radii 0.01: surface gap 1e-4
+  const double vj[3] = {-2.0, 0.0, 0.0};
+  veto.consider(kOrigin, kRest, 0.01, xj, vj, 0.01, 4e-5);  // 8e-5 <= 0.5 (gap + eps): not critical
+  EXPECT_EQ(veto.criticalPairs(), 0u);
+  veto.consider(kOrigin, kRest, 0.01, xj, vj, 0.01, 1e-3);  // 2e-3 > 2e-4: critical
+  EXPECT_EQ(veto.criticalPairs(), 1u);
+  EXPECT_NEAR(veto.limit(), 0.5 * 2e-4 / 2.0, 1e-15);
+  // in contact (overlap 5e-5 < eps) and still approaching: only eps - overlap is left
+  TimestepVeto inContact(0.0, 1.0, eps);
+  const double xc[3] = {0.02 - 5e-5, 0.0, 0.0};
+  inContact.consider(kOrigin, kRest, 0.01, xc, vj, 0.01, 1e-3);
+  EXPECT_NEAR(inContact.limit(), 5e-5 / 2.0, 1e-15);
+  // deeper than eps already: not critical (a smaller step cannot undo it)
+  TimestepVeto deep(0.0, 1.0, eps);
+  const double xd[3] = {0.02 - 2e-4, 0.0, 0.0};
+  deep.consider(kOrigin, kRest, 0.01, xd, vj, 0.01, 1e-3);
+  EXPECT_EQ(deep.criticalPairs(), 0u);
+  EXPECT_THROW(TimestepVeto(0.0, 0.5, -1e-3), std::invalid_argument);
+}
+
+TEST(AdaptiveTimestep, ContactCeilingAppliesOnlyWhilePairsOverlap) {
+  TimestepPolicy policy;
+  policy.dtMax = 1e-3;
+  policy.dtContact = 1e-5;
+  TimestepLimits limits;
+  EXPECT_DOUBLE_EQ(nextTimestep(1e-3, policy, limits, INFINITY).dt, 1e-3);
+  limits.inContact = true;
+  EXPECT_DOUBLE_EQ(nextTimestep(1e-3, policy, limits, INFINITY).dt, 1e-5);
+  EXPECT_DOUBLE_EQ(nextTimestep(5e-6, policy, limits, INFINITY).dt, 5.5e-6) << "creeps up to it";
+}
+
+TEST(TimestepRollback, RedoesOnlyStepsThatCausedTooDeepAnOverlap) {
+  RollbackPolicy policy;  // fraction 0.5, shrink 0.5, 20 retries
+  const double eps = 1e-3;
+  EXPECT_FALSE(judgeStep(policy, eps, 0.0, 4e-4, 1e-3, 1e-6, 0).redo);  // within 0.5 eps
+  RollbackDecision d = judgeStep(policy, eps, 0.0, 6e-4, 1e-3, 1e-6, 0);
+  EXPECT_TRUE(d.redo);
+  EXPECT_DOUBLE_EQ(d.dt, 5e-4);
+  EXPECT_FALSE(judgeStep(policy, eps, 6e-4, 7e-4, 1e-3, 1e-6, 0).redo) << "already deep before the step";
+  d = judgeStep(policy, eps, 0.0, 6e-4, 1.5e-6, 1e-6, 0);
+  EXPECT_TRUE(d.redo);
+  EXPECT_DOUBLE_EQ(d.dt, 1e-6) << "never below dtMin";
+  d = judgeStep(policy, eps, 0.0, 6e-4, 1e-6, 1e-6, 0);
+  EXPECT_FALSE(d.redo);
+  EXPECT_TRUE(d.exhausted);
+  EXPECT_TRUE(judgeStep(policy, eps, 0.0, 6e-4, 1e-3, 1e-6, 20).exhausted);
+  EXPECT_THROW(judgeStep(policy, 0.0, 0.0, 1.0, 1e-3, 1e-6, 0), std::invalid_argument);
+}
+
+TEST(TimestepRollback, BoundsTheEntryOverlapOfAFastCollisionWithoutVeto) {
+  // two spheres (m = 1, r = 0.01) closing at 2 m/s; the fixed step 2e-4 is far too coarse to
+  // enter contact gently (the first overlap can reach 4e-4). Integrate up to the first contact.
+  const double k = 1e7, m = 1.0, r = 0.01, eps = 2e-4, dtBig = 2e-4, dtMin = 1e-9;
+  RollbackPolicy policy;
+  auto entryOverlap = [&](bool withRollback, int& redos) {
+    double x1 = 0.0, x2 = 0.1 - 1.234e-4, v1 = 1.0, v2 = -1.0, f = 0.0;
+    redos = 0;
+    for (int step = 0; step < 1000; ++step) {
+      const double before = std::max(0.0, 2 * r - (x2 - x1));
+      const double s1 = x1, s2 = x2, w1 = v1, w2 = v2, sf = f;  // state at the step's start
+      double dt = dtBig;
+      for (int retries = 0;; ++retries) {
+        x1 = s1 + w1 * dt - 0.5 * sf / m * dt * dt;
+        x2 = s2 + w2 * dt + 0.5 * sf / m * dt * dt;
+        const double overlap = 2 * r - (x2 - x1);
+        const double fn = overlap > 0 ? k * overlap : 0.0;
+        v1 = w1 - 0.5 * (sf + fn) / m * dt;
+        v2 = w2 + 0.5 * (sf + fn) / m * dt;
+        f = fn;
+        const RollbackDecision d = judgeStep(policy, eps, before, std::max(0.0, overlap), dt, dtMin, retries);
+        if (!withRollback || !d.redo) break;
+        dt = d.dt;
+        ++redos;
+      }
+      if (2 * r - (x2 - x1) > 0.0) return 2 * r - (x2 - x1);
+    }
+    return -1.0;
+  };
+  int redos = 0;
+  const double without = entryOverlap(false, redos);
+  EXPECT_GT(without, policy.fraction * eps) << "the coarse step does penetrate too deep";
+  EXPECT_EQ(redos, 0);
+  const double with = entryOverlap(true, redos);
+  EXPECT_GT(with, 0.0);
+  EXPECT_LE(with, policy.fraction * eps);
+  EXPECT_GT(redos, 0);
+}
+
+TEST(AdaptiveTimestep, ListMarginKeepsUnlistedPairsApartForTheStep) {
+  TimestepPolicy policy;
+  policy.dtMax = 1.0;
+  TimestepLimits limits;
+  limits.skin = 0.002;
+  limits.maxSpeed = 0.5;  // skin cap: 0.5 * 0.002 / 0.5 = 2e-3
+  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, INFINITY).dt, 2e-3);
+  // particles moved 6e-4 since the build: unlisted pairs are >= 8e-4 apart, closing at <= 1 m/s
+  limits.listMargin = 0.002 - 2 * 6e-4;
+  EXPECT_DOUBLE_EQ(nextTimestep(1.0, policy, limits, INFINITY).dt, 8e-4);
 }

@@ -13,10 +13,13 @@ TimestepDecision nextTimestep(double dt, const TimestepPolicy& policy, const Tim
   if (!(dt > 0.0)) throw std::invalid_argument("nextTimestep: dt must be > 0");
   double next = policy.creep * dt;
   if (policy.dtMax > 0.0) next = std::min(next, policy.dtMax);
+  if (limits.inContact && policy.dtContact > 0.0) next = std::min(next, policy.dtContact);
   if (limits.maxSpeed > 0.0) {
     if (limits.finestCell > 0.0) next = std::min(next, (limits.finestCell + limits.halo) / limits.maxSpeed);
     // LIGGGHTS rebuilds its lists when a particle moved skin/2: never move further in one step
     if (limits.skin > 0.0) next = std::min(next, 0.5 * limits.skin / limits.maxSpeed);
+    // no pair outside the list may touch within the step (two particles close in at 2 v_max)
+    if (limits.listMargin > 0.0) next = std::min(next, 0.5 * limits.listMargin / limits.maxSpeed);
   }
   TimestepDecision decision;
   if (vetoLimit < next) {

@@ -10,6 +10,7 @@ struct TimestepPolicy {
   double creep = 1.1;    // growth factor C > 1 per step
   double dtMin = 0.0;    // floor: a veto never cuts below it (reported when hit)
   double dtMax = 0.0;    // ceiling (e.g. a fraction of the contact time); 0 = none
+  double dtContact = 0.0;  // ceiling while any pair is in contact (resolves the contact); 0 = none
 };
 
 struct TimestepLimits {
@@ -17,6 +18,10 @@ struct TimestepLimits {
   double halo = 0.0;        // 2 eps
   double skin = 0.0;        // neighbour-list skin (0 = no list constraint)
   double maxSpeed = 0.0;    // fastest particle
+  bool inContact = false;   // some pair overlaps now (dtContact applies)
+  // relative approach the current neighbour list still covers: skin - 2 * (largest displacement
+  // since the list was built); pairs outside the list are at least this far apart (0 = no limit)
+  double listMargin = 0.0;
 };
 
 struct TimestepDecision {

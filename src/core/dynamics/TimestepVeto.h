@@ -3,6 +3,11 @@
 // time step would close the remaining gap between the particles' halos, the pair is critical
 // and the time step is cut to a safe fraction of the time that gap takes to close.
 // The smallest cut over all critical pairs wins.
+//
+// Spheres (soft contact from touching surfaces on): the gap may be closed by up to an allowed
+// overlap eps, i.e. the veto keeps the kinematically extrapolated penetration
+// delta + v_n dt of every approaching pair within eps. Pairs already deeper than eps are not
+// critical: shrinking the next step cannot undo that penetration (the rollback handles it).
 #pragma once
 
 #include <cstdint>
@@ -15,14 +20,17 @@ class TimestepVeto {
   // halo: distance beyond the sum of radii at which contact starts (2 eps for triangulated
   //       particles, 0 for spheres whose surfaces touch);
   // safety: fraction of the gap-closing time granted to a critical pair (0 < safety <= 1).
-  TimestepVeto(double halo, double safety);
+  // allowedOverlap: penetration eps a pair may reach before it counts as violated (>= 0).
+  TimestepVeto(double halo, double safety, double allowedOverlap = 0.0);
 
   // Forget the pairs of the last step.
   void reset();
 
   // One pair with centres xi, xj, velocities vi, vj and radii ri, rj, against step dt.
-  // Receding pairs and pairs already within the halo (in contact) are not critical.
-  void consider(const double xi[3], const double vi[3], double ri, const double xj[3],
+  // Critical when the step dt exceeds the safe step (safety times the time the closing speed
+  // takes to use up the gap, plus the allowed overlap); returns whether it was.
+  // Receding pairs and pairs already deeper than allowed are not critical.
+  bool consider(const double xi[3], const double vi[3], double ri, const double xj[3],
                 const double vj[3], double rj, double dt);
 
   // The largest time step all critical pairs allow (+inf when none was critical).
@@ -30,7 +38,7 @@ class TimestepVeto {
   std::uint64_t criticalPairs() const { return critical_; }
 
  private:
-  double halo_, safety_;
+  double halo_, safety_, allowedOverlap_;
   double limit_ = std::numeric_limits<double>::infinity();
   std::uint64_t critical_ = 0;
 };

@@ -1,0 +1,319 @@
+#!/usr/bin/env python3
+"""Accuracy versus cost of the time step: fixed steps against `fix adapt/timestep`.
+
+  /usr/bin/python3 bench/accuracy_vs_cost.py [--exe build/liggghts-spacetree] [--repeats 3]
+
+Two problems (decks in inputs/accuracy/):
+  two_spheres  two equal spheres head-on with the hooke model, 5 diameters apart at 1 m/s each;
+               e = 0.5 for the restitution error, e = 1 for the energy error, peak overlap
+               against the closed form (tests/liggghts/timestep/lg.py);
+  pour         216 spheres of 2/3/4 mm falling on a floor, elastic and frictionless: the energy
+               error is the drift of kinetic + gravitational + spring energy.
+Policies: fixed dt = tc/k (tc the shortest contact time), and the adaptive step (creep 1.1,
+veto, eps, dtcontact = the finest fixed dt; with and without rollback).
+Writes docs/accuracy_vs_cost.md (tables), docs/accuracy_vs_cost.csv and
+docs/figures/accuracy_vs_cost_*.png. Wall time: median of --repeats runs ("Loop time" sums).
+"""
+import argparse
+import csv
+import math
+import os
+import statistics
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tests", "liggghts", "timestep"))
+import lg  # noqa: E402
+
+G = 9.81
+
+
+def loop_time(log):
+    return sum(float(l.split()[3]) for l in open(log, errors="replace") if l.startswith("Loop time of"))
+
+
+def last_row(log):
+    names, rows = lg.thermo(log)
+    return dict(zip(names, rows[-1]))
+
+
+def fixed_line(dt):
+    # creep 1, no veto: the step stays dt; the fix only reports overlaps (f_dtv[8])
+    return "fix dtv all adapt/timestep creep 1.0 dtmax %.9g veto no" % dt
+
+
+def adaptive_line(dtcontact, eps, rollback, dtmax=1e-3):
+    return ("fix dtv all adapt/timestep creep 1.1 dtmax %.9g dtmin %.9g dtcontact %.9g eps %.9g%s"
+            % (dtmax, dtcontact / 100, dtcontact, eps, " rollback yes penetration 0.9" if rollback else ""))
+
+
+class Runner:
+    def __init__(self, exe, work, repeats):
+        self.exe, self.work, self.repeats = exe, work, repeats
+
+    def run(self, deck, name, variables):
+        walls, log = [], None
+        for k in range(self.repeats):
+            rc, out, log = lg.run_deck(self.exe, deck, self.work, "%s.%d" % (name, k), variables, timeout=900)
+            if rc != 0:
+                raise RuntimeError("%s failed:\n%s" % (name, out[-2000:]))
+            walls.append(loop_time(log))
+        return log, statistics.median(walls)
+
+
+def two_spheres(runner, rows):
+    deck = os.path.join(ROOT, "inputs", "accuracy", "in.two_spheres")
+    d, rho, v0, gap0 = 0.01, 2500.0, 1.0, 0.05
+    m = lg.sphere_mass(d, rho)
+    h = lg.hooke(5e6, 0.45, d / 2, d / 2, m, m, 0.5, 2.0)
+    tc, peak = h["contact_time"], lg.peak_overlap(h, 2 * v0)
+    h1 = lg.hooke(5e6, 0.45, d / 2, d / 2, m, m, 0.999999999, 2.0)
+    tc1 = math.pi / math.sqrt(h1["kn"] / h1["m_eff"])
+    tend = gap0 / (2 * v0) + 3 * tc
+    eps = 1.5 * peak
+    ks = [5, 10, 20, 50, 100, 200]
+    best = tc / ks[-1]
+    policies = [("fixed tc/%d" % k, tc / k, fixed_line(tc / k)) for k in ks]
+    policies += [("adaptive", tc / 1000, adaptive_line(best, eps, False)),
+                 ("adaptive+rollback", tc / 1000, adaptive_line(best, eps, True))]
+    for label, dt0, line in policies:
+        log, wall = runner.run(deck, "ts_" + label.replace(" ", "_").replace("/", ""),
+                               dict(e=0.5, gap0=gap0, tend=tend, dt0=dt0, adapt=line))
+        r = last_row(log)
+        e_meas = r["vrel"] / (2 * v0)
+        log1, _ = runner.run(deck, "ts1_" + label.replace(" ", "_").replace("/", ""),
+                             dict(e=1.0, gap0=gap0, tend=tend, dt0=dt0, adapt=line))
+        r1 = last_row(log1)
+        ke0 = m * v0 ** 2
+        rows.append(dict(case="two_spheres", policy=label, steps=int(r["Step"]), sim_time=r["Time"],
+                         wall_s=wall, restitution_error=abs(e_meas - 0.5) / 0.5,
+                         peak_overlap=r["dtv[8]"], peak_overlap_error=abs(r["dtv[8]"] - peak) / peak,
+                         eps=eps, energy_error=abs(r1["KinEng"] / ke0 - 1.0)))
+        print("two_spheres %-18s steps %7d wall %.3f s  e err %.2e  peak err %.2e  energy err %.2e"
+              % (label, rows[-1]["steps"], wall, rows[-1]["restitution_error"],
+                 rows[-1]["peak_overlap_error"], rows[-1]["energy_error"]))
+    return dict(tc=tc, peak=peak, tend=tend, eps=eps, tc_elastic=tc1)
+
+
+def read_dump(path):
+    lines = open(path).read().split("\n")
+    k = lines.index(next(l for l in lines if l.startswith("ITEM: ATOMS")))
+    cols = lines[k].split()[2:]
+    box = [tuple(map(float, lines[k - 3 + i].split()[:2])) for i in range(3)]
+    atoms = [dict(zip(cols, map(float, l.split()))) for l in lines[k + 1:] if l.strip()]
+    return box, atoms
+
+
+def pour_energy(path, young, poisson, v_char):
+    """Kinetic + gravitational + spring energy (hooke, no damping: 1/2 kn delta^2 per contact)."""
+    box, atoms = read_dump(path)
+    lx, ly = box[0][1] - box[0][0], box[1][1] - box[1][0]
+    e = 0.0
+    for a in atoms:
+        e += 0.5 * a["mass"] * (a["vx"] ** 2 + a["vy"] ** 2 + a["vz"] ** 2) + a["mass"] * G * a["z"]
+        if a["z"] < a["radius"]:   # floor at z = 0: reff = r, meff = m
+            h = lg.hooke(young, poisson, a["radius"], 1e30, a["mass"], 1e30, 0.5, v_char)
+            e += 0.5 * h["kn"] * (a["radius"] - a["z"]) ** 2
+    for i in range(len(atoms)):
+        a = atoms[i]
+        for j in range(i + 1, len(atoms)):
+            b = atoms[j]
+            dx = b["x"] - a["x"]
+            dy = b["y"] - a["y"]
+            dx -= lx * round(dx / lx)
+            dy -= ly * round(dy / ly)
+            dz = b["z"] - a["z"]
+            delta = a["radius"] + b["radius"] - math.sqrt(dx * dx + dy * dy + dz * dz)
+            if delta > 0.0:
+                h = lg.hooke(young, poisson, a["radius"], b["radius"], a["mass"], b["mass"], 0.5, v_char)
+                e += 0.5 * h["kn"] * delta ** 2
+    return e
+
+
+def pour(runner, rows):
+    deck = os.path.join(ROOT, "inputs", "accuracy", "in.pour")
+    young, poisson, v_char, rho = 5e6, 0.3, 1.0, 2500.0
+    # shortest contact time: every size pair and every size on the floor
+    ds = [0.002, 0.003, 0.004]
+    tcs = []
+    for a in ds:
+        ma = lg.sphere_mass(a, rho)
+        tcs.append(lg.hooke(young, poisson, a / 2, 1e30, ma, 1e30, 0.999999999, v_char)["contact_time"])
+        for b in ds:
+            mb = lg.sphere_mass(b, rho)
+            tcs.append(lg.hooke(young, poisson, a / 2, b / 2, ma, mb, 0.999999999, v_char)["contact_time"])
+    tc = min(tcs)
+    tend, eps = 0.12, 5e-4
+    ks = [5, 10, 20, 50, 100]
+    best = tc / ks[-1]
+    policies = [("fixed tc/%d" % k, tc / k, fixed_line(tc / k)) for k in ks]
+    policies += [("adaptive", tc / 1000, adaptive_line(best, eps, False)),
+                 ("adaptive+rollback", tc / 1000, adaptive_line(best, eps, True))]
+    for label, dt0, line in policies:
+        tag = "pour_" + label.replace(" ", "_").replace("/", "").replace("+", "_")
+        init, final = os.path.join(runner.work, tag + ".initial"), os.path.join(runner.work, tag + ".final")
+        log, wall = runner.run(deck, tag, dict(tend=tend, dt0=dt0, adapt=line, initial=init, final=final))
+        r = last_row(log)
+        e0, e1 = pour_energy(init, young, poisson, v_char), pour_energy(final, young, poisson, v_char)
+        rows.append(dict(case="pour", policy=label, steps=int(r["Step"]), sim_time=r["Time"], wall_s=wall,
+                         restitution_error=float("nan"), peak_overlap=r["dtv[8]"],
+                         peak_overlap_error=float("nan"), eps=eps, energy_error=abs(e1 - e0) / e0))
+        print("pour        %-18s steps %7d wall %.3f s  peak overlap %.3e  energy err %.2e"
+              % (label, rows[-1]["steps"], wall, rows[-1]["peak_overlap"], rows[-1]["energy_error"]))
+    return dict(tc=tc, tend=tend, eps=eps)
+
+
+def verdict(rows, case, metrics):
+    sub = [r for r in rows if r["case"] == case]
+    fixed = [r for r in sub if r["policy"].startswith("fixed")]
+    best = min(fixed, key=lambda r: sum(r[m] for m in metrics))  # the most accurate fixed step
+    out = []
+    for r in sub:
+        if not r["policy"].startswith("adaptive"):
+            continue
+        ratio = r["steps"] / best["steps"]
+        reaches = all(r[m] <= 1.1 * best[m] + 1e-12 for m in metrics)
+        out.append((r["policy"], best["policy"], ratio, r["wall_s"] / best["wall_s"], reaches,
+                    {m: (r[m], best[m]) for m in metrics}))
+    return out
+
+
+def fmt(x):
+    if isinstance(x, float):
+        if math.isnan(x):
+            return "-"
+        return "%.3g" % x
+    return str(x)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "liggghts-spacetree"))
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--docs", default=os.path.join(ROOT, "docs"))
+    a = ap.parse_args()
+    work = os.path.join(ROOT, "build", "bench_accuracy_vs_cost")
+    runner = Runner(a.exe, work, a.repeats)
+    rows = []
+    info_ts = two_spheres(runner, rows)
+    info_pour = pour(runner, rows)
+
+    os.makedirs(os.path.join(a.docs, "figures"), exist_ok=True)
+    keys = ["case", "policy", "steps", "sim_time", "wall_s", "restitution_error", "peak_overlap",
+            "peak_overlap_error", "eps", "energy_error"]
+    with open(os.path.join(a.docs, "accuracy_vs_cost.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+
+    v_ts = verdict(rows, "two_spheres", ["restitution_error", "energy_error"])
+    v_pour = verdict(rows, "pour", ["energy_error"])
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    for ax, case, metric, title in ((axes[0], "two_spheres", "restitution_error", "two spheres, e = 0.5"),
+                                    (axes[1], "two_spheres", "energy_error", "two spheres, e = 1"),
+                                    (axes[2], "pour", "energy_error", "polydisperse pour, elastic")):
+        sub = [r for r in rows if r["case"] == case]
+        fx = [r for r in sub if r["policy"].startswith("fixed")]
+        ax.loglog([r["steps"] for r in fx], [max(r[metric], 1e-16) for r in fx], "o-", label="fixed dt = tc/k")
+        for r in fx:
+            ax.annotate(r["policy"].split()[1], (r["steps"], max(r[metric], 1e-16)), fontsize=7)
+        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], ("r*", "gs")):
+            ax.loglog([r["steps"]], [max(r[metric], 1e-16)], mk, ms=10, label=r["policy"])
+        ax.set_xlabel("steps")
+        ax.set_ylabel(metric.replace("_", " ") + " (relative)")
+        ax.set_title(title)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.docs, "figures", "accuracy_vs_cost_steps.png"), dpi=100)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    for ax, case, metric in ((axes[0], "two_spheres", "restitution_error"), (axes[1], "pour", "energy_error")):
+        sub = [r for r in rows if r["case"] == case]
+        fx = [r for r in sub if r["policy"].startswith("fixed")]
+        ax.loglog([r["wall_s"] for r in fx], [max(r[metric], 1e-16) for r in fx], "o-", label="fixed dt = tc/k")
+        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], ("r*", "gs")):
+            ax.loglog([r["wall_s"]], [max(r[metric], 1e-16)], mk, ms=10, label=r["policy"])
+        ax.set_xlabel("wall time (s, median of %d)" % a.repeats)
+        ax.set_ylabel(metric.replace("_", " "))
+        ax.set_title(case)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.docs, "figures", "accuracy_vs_cost_wall.png"), dpi=100)
+
+    md = ["# Accuracy versus cost of the time step",
+          "",
+          "Generated by `/usr/bin/python3 bench/accuracy_vs_cost.py` (decks `inputs/accuracy/`, raw numbers",
+          "in [accuracy_vs_cost.csv](accuracy_vs_cost.csv)); do not edit by hand. Wall time: median of %d runs"
+          % a.repeats,
+          "of the LIGGGHTS loop on this machine (2 shared cores). Every policy, fixed ones included, runs",
+          "`fix adapt/timestep` (fixed: `creep 1.0 veto no`, which keeps dt and only reports overlaps), so",
+          "the per-step cost of the overlap scan is in every row.",
+          "",
+          "Adaptive policy: `creep 1.1 dtmax 1e-3 dtcontact <finest fixed dt> eps <eps>` (veto on); the",
+          "second adaptive row adds `rollback yes penetration 0.9`. Between contacts the step grows to",
+          "the skin cap (skin/2 per step) and `dtmax`; while any pair is in contact or may touch within",
+          "the next step it is at most `dtcontact`.",
+          "",
+          "## Two spheres head-on (hooke)",
+          "",
+          "d = 0.01 m, 2500 kg/m^3, +-1 m/s, 0.05 m apart, run to t = %.4g s; closed form: contact time"
+          % info_ts["tend"],
+          "tc = %.4e s, peak overlap %.4e m (e = 0.5); eps = %.3e m. Restitution error: |e - 0.5|/0.5;"
+          % (info_ts["tc"], info_ts["peak"], info_ts["eps"]),
+          "energy error: |KE after / KE before - 1| of the same run with e = 1; peak-overlap error against",
+          "the closed form.",
+          "",
+          "| policy | steps | wall (s) | restitution error | peak overlap (m) | peak-overlap error | energy error (e = 1) |",
+          "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        if r["case"] == "two_spheres":
+            md.append("| %s | %d | %s | %s | %s | %s | %s |" % (r["policy"], r["steps"], fmt(r["wall_s"]),
+                      fmt(r["restitution_error"]), fmt(r["peak_overlap"]), fmt(r["peak_overlap_error"]),
+                      fmt(r["energy_error"])))
+    md += ["",
+           "## Polydisperse pour (elastic, frictionless)",
+           "",
+           "216 spheres of d = 2, 3, 4 mm on a jittered 6 mm lattice fall onto a floor (`fix wall/gran",
+           "primitive zplane`), periodic in x and y, run to t = %.3g s; tc = %.4e s is the shortest contact"
+           % (info_pour["tend"], info_pour["tc"]),
+           "time (all size pairs and the floor). Energy error: |E(t_end) - E(0)| / E(0) with E = kinetic +",
+           "gravitational + spring energy (1/2 kn delta^2 per contact, computed from dumps); eps = %.1e m."
+           % info_pour["eps"],
+           "",
+           "| policy | steps | wall (s) | peak overlap (m) | energy error |",
+           "|---|---|---|---|---|"]
+    for r in rows:
+        if r["case"] == "pour":
+            md.append("| %s | %d | %s | %s | %s |" % (r["policy"], r["steps"], fmt(r["wall_s"]),
+                      fmt(r["peak_overlap"]), fmt(r["energy_error"])))
+    md += ["", "## Target: the accuracy of the best fixed step in <= 1/5 of its steps", "",
+           "Best fixed step = the most accurate fixed row; an adaptive row reaches its accuracy if each",
+           "error metric is at most 1.1 times the best fixed one.", "",
+           "| case | adaptive policy | best fixed | steps ratio | wall ratio | reaches its accuracy | errors (adaptive / best fixed) | target met |",
+           "|---|---|---|---|---|---|---|---|"]
+    for case, vs in (("two_spheres", v_ts), ("pour", v_pour)):
+        for pol, bestpol, ratio, wratio, reaches, errs in vs:
+            md.append("| %s | %s | %s | %.3f (1/%.1f) | %.3f | %s | %s | %s |" % (
+                case, pol, bestpol, ratio, 1 / ratio, wratio, "yes" if reaches else "no",
+                ", ".join("%s %.2e / %.2e" % (m.replace("_error", ""), x, y) for m, (x, y) in errs.items()),
+                "yes" if reaches and ratio <= 0.2 else "no"))
+    md += ["", "![error vs steps](figures/accuracy_vs_cost_steps.png)", "",
+           "![error vs wall time](figures/accuracy_vs_cost_wall.png)", ""]
+    with open(os.path.join(a.docs, "accuracy_vs_cost.md"), "w") as f:
+        f.write("\n".join(md))
+    for case, vs in (("two_spheres", v_ts), ("pour", v_pour)):
+        for pol, bestpol, ratio, wratio, reaches, errs in vs:
+            print("%s %s vs %s: steps ratio %.3f, wall ratio %.3f, reaches accuracy: %s"
+                  % (case, pol, bestpol, ratio, wratio, reaches))
+    print("wrote", os.path.join(a.docs, "accuracy_vs_cost.md"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

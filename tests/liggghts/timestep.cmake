@@ -1,0 +1,26 @@
+# fix adapt/timestep: closed-form two-sphere checks (tests/liggghts/timestep) and the hard-case
+# suite (tests/liggghts/hardcases), all with `neighbor ... spacetree`. Included from CMakeLists.txt.
+set(_ts_dir "${CMAKE_CURRENT_SOURCE_DIR}/timestep")
+set(_hc_dir "${CMAKE_CURRENT_SOURCE_DIR}/hardcases")
+
+# ts_test(<ctest name> <driver> <case> <ranks> <timeout s>)
+function(ts_test name driver case nprocs timeout)
+  string(REPLACE ":" "_" work "${name}")
+  add_test(NAME "liggghts.${name}"
+           COMMAND "${Python3_EXECUTABLE}" "${driver}" "${case}"
+                   --exe "${LIGGGHTS_EXE}" --mpiexec "${MPIEXEC_EXECUTABLE}"
+                   --workdir "${_workroot}/${work}")
+  set_tests_properties("liggghts.${name}" PROPERTIES LABELS liggghts TIMEOUT ${timeout} PROCESSORS ${nprocs})
+endfunction()
+
+foreach(case damped elastic rollback)
+  ts_test("timestep.${case}.1" "${_ts_dir}/check_closed_form.py" "${case}" 1 120)
+  ts_test("timestep.${case}.2" "${_ts_dir}/check_closed_form.py" "${case}:2" 2 120)
+endforeach()
+ts_test("timestep.control" "${_ts_dir}/check_closed_form.py" control 1 60)
+
+foreach(case impact100 ratio1000 squeeze threebody stack)
+  ts_test("hardcase.${case}" "${_hc_dir}/check_hardcases.py" "${case}" 1 180)
+endforeach()
+ts_test("hardcase.impact100.2" "${_hc_dir}/check_hardcases.py" "impact100:2" 2 180)
+ts_test("hardcase.squeeze.2" "${_hc_dir}/check_hardcases.py" "squeeze:2" 2 180)

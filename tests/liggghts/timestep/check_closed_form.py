@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""Closed-form checks of `fix adapt/timestep` on two equal spheres with the LIGGGHTS hooke
+(linear spring-dashpot) contact (deck in.two_spheres_hooke, thermo every step).
+
+  check_closed_form.py CASE --exe EXE --workdir DIR [--mpiexec MPIRUN]
+
+CASE
+  damped[:NP]   e = 0.5: measured restitution and contact duration within 1 % of the closed
+                form, peak overlap within 1 % of the closed form, overlap <= eps at every step,
+                time = sum of the steps; NP ranks (the contact sits on the rank boundary).
+  elastic[:NP]  e = 1 (no damping): kinetic energy after = before within 1e-6 relative, and the
+                overlap <= eps at every step.
+  rollback[:NP] veto no, a coarse dtcontact: without rollback the first contact step overlaps
+                deeper than penetration*eps; with rollback yes it does not, rollbacks > 0 are
+                counted, and the restitution is still within 1 %.
+  control       a fixed coarse step (no fix) breaks the 1 % restitution and the eps bound:
+                the checks above can fail.
+Exit status 0 = pass, 1 = fail.
+"""
+import argparse
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import lg  # noqa: E402
+
+DECK = os.path.join(HERE, "in.two_spheres_hooke")
+D, RHO, V0 = 0.01, 2500.0, 1.0
+EXTRA = "f_dtv[2] f_dtv[4] f_dtv[5] f_dtv[6] f_dtv[7] f_dtv[8] f_dtv[10]"
+
+
+def closed_form(e):
+    m = lg.sphere_mass(D, RHO)
+    h = lg.hooke(5e6, 0.45, D / 2, D / 2, m, m, e, 2.0) if e < 1.0 else None
+    if h is None:  # e = 1: no damping
+        h = lg.hooke(5e6, 0.45, D / 2, D / 2, m, m, 0.999999999, 2.0)
+        h["beta"], h["omega_d"] = 0.0, (h["kn"] / h["m_eff"]) ** 0.5
+        h["contact_time"], h["restitution"] = 3.141592653589793 / h["omega_d"], 1.0
+    h["peak"] = lg.peak_overlap(h, 2 * V0)
+    return h
+
+
+def measure(names, rows):
+    t = lg.column(names, rows, "Time")
+    dt = lg.column(names, rows, "Dt")
+    gap = lg.column(names, rows, "v_gap")
+    vrel = lg.column(names, rows, "v_vrel")
+    ke = lg.column(names, rows, "KinEng")
+    cr = lg.crossings(t, gap)
+    res = dict(t=t, dt=dt, gap=gap, steps=len(rows) - 1, crossings=cr,
+               restitution=vrel[-1] / -vrel[0], ke_ratio=ke[-1] / ke[0],
+               max_overlap=max(0.0, -min(gap)))
+    res["contact_time"] = cr[1] - cr[0] if len(cr) >= 2 else float("nan")
+    for k, n in (("vetoed", "f_dtv[2]"), ("floored", "f_dtv[4]"), ("rollbacks", "f_dtv[5]"),
+                 ("failed", "f_dtv[6]"), ("overlap_now", "f_dtv[7]"), ("overlap_peak", "f_dtv[8]"),
+                 ("rollbacks_rebuilt", "f_dtv[10]")):
+        if n in names or n[2:] in names:
+            res[k] = lg.column(names, rows, n)
+    return res
+
+
+def adaptive_line(eps, dtcontact, extra=""):
+    return ("fix dtv all adapt/timestep creep 1.1 dtmax 1e-3 dtmin 1e-9 dtcontact %.6g eps %.6g %s"
+            % (dtcontact, eps, extra))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("case")
+    ap.add_argument("--exe", required=True)
+    ap.add_argument("--workdir", required=True)
+    ap.add_argument("--mpiexec", default="mpirun")
+    a = ap.parse_args()
+    case, _, np_ = a.case.partition(":")
+    nprocs = int(np_ or 1)
+    procs = "%d 1 1" % nprocs
+    ok = True
+
+    def check(cond, what):
+        nonlocal ok
+        print(("PASS " if cond else "FAIL ") + what)
+        ok = ok and bool(cond)
+
+    def run(name, e, adapt, n, extra=EXTRA, dt0=1e-5, x0=0.0123, skin=0.002):
+        rc, out, log = lg.run_deck(a.exe, DECK, a.workdir, name,
+                                   {"e": e, "adapt": adapt, "n": n, "extra": extra, "dt0": dt0,
+                                    "procs": procs, "nstyle": "spacetree", "x0": x0, "skin": skin},
+                                   nprocs=nprocs, mpiexec=a.mpiexec)
+        if rc != 0:
+            print(out[-3000:])
+            return None
+        return measure(*lg.thermo(log))
+
+    if case == "damped":
+        h = closed_form(0.5)
+        eps = 1.5 * h["peak"]
+        r = run("damped", 0.5, adaptive_line(eps, h["contact_time"] / 200,
+                                              "rollback yes penetration 0.9"), 700)
+        check(r is not None, "adaptive run finished on %d rank(s)" % nprocs)
+        if r is None:
+            return 1
+        print("  closed form: e %.6f, tc %.6e s, peak overlap %.6e m; measured: e %.6f, tc %.6e s, "
+              "peak %.6e m, %d steps, %d vetoed" % (h["restitution"], h["contact_time"], h["peak"],
+                                                    r["restitution"], r["contact_time"], r["max_overlap"],
+                                                    r["steps"], r["vetoed"][-1]))
+        check(abs(r["restitution"] - 0.5) <= 0.005, "restitution %.6f within 1 %% of 0.5" % r["restitution"])
+        check(abs(r["contact_time"] - h["contact_time"]) <= 0.01 * h["contact_time"],
+              "contact duration within 1 %% of pi/omega_d (%.3f %%)"
+              % (100 * (r["contact_time"] / h["contact_time"] - 1)))
+        check(abs(r["max_overlap"] - h["peak"]) <= 0.01 * h["peak"],
+              "peak overlap within 1 %% of the closed form (%.3f %%)" % (100 * (r["max_overlap"] / h["peak"] - 1)))
+        check(max(r["overlap_now"]) <= eps and r["overlap_peak"][-1] <= eps,
+              "overlap <= eps = %.4g at every step (max %.4g)" % (eps, max(r["overlap_now"])))
+        check(abs(r["overlap_peak"][-1] - r["max_overlap"]) <= 1e-12,
+              "f_ID[8] reports the peak overlap the thermo gap shows")
+        # afterwards the list look-ahead (skin - 2 * displacement since the last build, at 0.5 m/s)
+        # keeps the step between skin/4 and skin/2 per particle: 0.5 .. 1 ms
+        late = max(r["dt"][-50:])
+        check(min(r["dt"]) <= h["contact_time"] / 200 and late >= 0.5e-3, "the step went down to dtcontact "
+              "in the contact (min %.3g) and back up to %.3g s afterwards" % (min(r["dt"]), late))
+        total = sum(r["dt"][:-1])
+        check(abs(total - r["t"][-1]) <= 1e-9 * r["t"][-1], "time %.15g = sum of the steps %.15g" % (r["t"][-1], total))
+    elif case == "elastic":
+        h = closed_form(1.0)
+        eps = 1.5 * h["peak"]
+        r = run("elastic", 1.0, adaptive_line(eps, h["contact_time"] / 4000, "rollback yes penetration 0.9"), 5000)
+        check(r is not None, "adaptive run finished on %d rank(s)" % nprocs)
+        if r is None:
+            return 1
+        print("  kinetic energy after / before - 1 = %.3e, restitution %.9f, %d steps, peak overlap %.6e "
+              "(closed form %.6e)" % (r["ke_ratio"] - 1, r["restitution"], r["steps"], r["max_overlap"], h["peak"]))
+        check(len(r["crossings"]) >= 2, "the spheres collided and separated")
+        check(abs(r["ke_ratio"] - 1.0) <= 1e-6, "kinetic energy conserved within 1e-6 relative")
+        check(max(r["overlap_now"]) <= eps, "overlap <= eps at every step")
+        check(abs(r["contact_time"] - h["contact_time"]) <= 0.01 * h["contact_time"],
+              "contact duration within 1 % of pi/omega_0")
+    elif case == "rollback":
+        h = closed_form(0.5)
+        eps = 1.5 * h["peak"]
+        bound = 0.9 * eps       # above the physical peak: only a numerical overshoot exceeds it
+        # no veto and no contact resolution, a wide skin: the step enters contact at dtmax (1e-3 s,
+        # close to the contact time), so the first contact step overlaps deeply
+        base = ("fix dtv all adapt/timestep creep 1.1 dtmax 1e-3 dtmin 1e-9 eps %.6g veto no" % eps)
+        r0 = run("rollback_off", 0.5, base, 150, x0=0.0132, skin=0.006)
+        r1 = run("rollback_on", 0.5, base + " rollback yes penetration 0.9", 150, x0=0.0132, skin=0.006)
+        check(r0 is not None and r1 is not None, "both runs finished on %d rank(s)" % nprocs)
+        if r0 is None or r1 is None:
+            return 1
+        peak0, peak1 = r0["max_overlap"], r1["max_overlap"]
+        print("  peak overlap: %.4e without, %.4e with rollback (bound %.4e, closed-form peak %.4e); "
+              "rollbacks %d (%d of steps that re-neighboured)"
+              % (peak0, peak1, bound, h["peak"], r1["rollbacks"][-1], r1["rollbacks_rebuilt"][-1]))
+        check(peak0 > bound, "without rollback the coarse step overlaps deeper than penetration*eps")
+        check(peak1 <= bound, "with rollback yes no step does")
+        check(r0["rollbacks"][-1] == 0 and r1["rollbacks"][-1] >= 1, "rollbacks are counted in f_ID[5]")
+        check(r1["failed"][-1] == 0, "no rollback refused or exhausted")
+        # each step advanced the time by the step it was taken with: the one chosen before it,
+        # halved once per rollback of that step
+        worst = 0.0
+        for k in range(1, len(r1["t"])):
+            redo = r1["rollbacks"][k] - r1["rollbacks"][k - 1]
+            used = r1["dt"][k - 1] * 0.5 ** redo
+            worst = max(worst, abs((r1["t"][k] - r1["t"][k - 1]) - used) / used)
+        check(worst <= 1e-9, "time advances by the redone step's dt (worst relative mismatch %.2e)" % worst)
+        check(len(r1["crossings"]) >= 1, "the collision happened")
+    elif case == "control":
+        h = closed_form(0.5)
+        eps = 1.5 * h["peak"]
+        dt = h["contact_time"] / 3
+        r = run("control", 0.5, "", 200, extra="v_gap", dt0=dt)
+        check(r is not None, "fixed-step run finished")
+        if r is None:
+            return 1
+        print("  fixed dt = tc/3: restitution %.4f, peak overlap %.4g (eps %.4g)" % (r["restitution"], r["max_overlap"], eps))
+        check(abs(r["restitution"] - 0.5) > 0.005, "a coarse fixed step misses the 1 % restitution bound")
+    else:
+        print("unknown case", case)
+        return 1
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
