@@ -2,10 +2,45 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace spacetree::geometry {
+namespace {
+
+// A deterministic choice among the valid principal axes (see the header): within a degenerate
+// eigenspace the basis closest to the mesh axes, each distinct axis signed so that its largest
+// component is positive, the last column fixing right-handedness.
+Eigen::Matrix3d canonicalPrincipalAxes(const Eigen::Vector3d& moments, Eigen::Matrix3d axes) {
+  const double tolerance = kDegenerateMomentTolerance * std::abs(moments[2]);
+  const bool low = moments[1] - moments[0] <= tolerance;   // axes 0 and 1 share a moment
+  const bool high = moments[2] - moments[1] <= tolerance;  // axes 1 and 2 share a moment
+  if (low && high) return Eigen::Matrix3d::Identity();
+  for (int k = 0; k < 3; ++k) {
+    int largest;
+    axes.col(k).cwiseAbs().maxCoeff(&largest);
+    if (axes(largest, k) < 0.0) axes.col(k) *= -1.0;
+  }
+  if (low || high) {
+    const int distinct = low ? 2 : 0;
+    const int a = low ? 0 : 1, b = low ? 1 : 2;
+    const Eigen::Vector3d axis = axes.col(distinct);
+    // The mesh axis with the largest projection onto the plane orthogonal to the distinct axis.
+    Eigen::Vector3d best = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d projected =
+          Eigen::Vector3d::Unit(k) - axis * axis.dot(Eigen::Vector3d::Unit(k));
+      if (projected.squaredNorm() > best.squaredNorm() + 1e-12) best = projected;
+    }
+    axes.col(a) = best.normalized();
+    axes.col(b) = axis.cross(axes.col(a)).normalized();
+  }
+  if (axes.determinant() < 0.0) axes.col(2) *= -1.0;
+  return axes;
+}
+
+}  // namespace
 
 MassProperties computeMassProperties(const TriangleMesh& mesh) {
   if (mesh.triangles.empty())
@@ -47,8 +82,7 @@ MassProperties computeMassProperties(const TriangleMesh& mesh) {
 
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(p.inertiaPerUnitDensity);
   p.principalMomentsPerUnitDensity = solver.eigenvalues();
-  p.principalAxes = solver.eigenvectors();
-  if (p.principalAxes.determinant() < 0.0) p.principalAxes.col(2) *= -1.0;
+  p.principalAxes = canonicalPrincipalAxes(solver.eigenvalues(), solver.eigenvectors());
   return p;
 }
 

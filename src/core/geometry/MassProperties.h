@@ -11,6 +11,8 @@
 
 namespace spacetree::geometry {
 
+constexpr double kDegenerateMomentTolerance = 1e-9;
+
 struct MassProperties {
   double volume = 0.0;
   Eigen::Vector3d centreOfMass = Eigen::Vector3d::Zero();
@@ -18,8 +20,12 @@ struct MassProperties {
   // I = integral (|r|^2 Id - r r^T) dV, r = x - centreOfMass.
   Eigen::Matrix3d inertiaPerUnitDensity = Eigen::Matrix3d::Zero();
   // Eigen-decomposition I = axes * diag(moments) * axes^T: moments ascending, axes as columns,
-  // orthonormal and right-handed (det = +1). For equal moments (cube, sphere) any orthonormal
-  // basis of the eigenspace is a valid choice; the one returned is Eigen's.
+  // orthonormal and right-handed (det = +1). The choice is deterministic: each axis with a
+  // distinct moment is signed so that its largest component is positive; moments equal within
+  // kDegenerateMomentTolerance (relative) share an eigenspace, where the basis closest to the
+  // mesh axes is taken - all three equal (cube, regular sphere mesh): the identity, so such a
+  // shape keeps the mesh's axes as body axes; two equal (cylinder): the mesh axis with the
+  // largest projection onto the plane, then its completion.
   Eigen::Vector3d principalMomentsPerUnitDensity = Eigen::Vector3d::Zero();
   Eigen::Matrix3d principalAxes = Eigen::Matrix3d::Identity();
 

@@ -1,0 +1,251 @@
+#include "contact/MeshContact.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "geometry/PenaltyTriangleDistance.h"
+
+namespace spacetree::contact {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using geometry::Triangle;
+
+TriangleDistanceMethod parseTriangleDistanceMethod(const std::string& name) {
+  if (name == "exact") return TriangleDistanceMethod::Exact;
+  if (name == "penalty") return TriangleDistanceMethod::Penalty;
+  if (name == "hybrid") return TriangleDistanceMethod::Hybrid;
+  throw std::invalid_argument("unknown triangle distance method '" + name +
+                              "' (expected exact, penalty or hybrid)");
+}
+
+const char* triangleDistanceMethodName(TriangleDistanceMethod method) {
+  switch (method) {
+    case TriangleDistanceMethod::Exact: return "exact";
+    case TriangleDistanceMethod::Penalty: return "penalty";
+    case TriangleDistanceMethod::Hybrid: return "hybrid";
+  }
+  return "?";
+}
+
+MeshContactStatistics& MeshContactStatistics::operator+=(const MeshContactStatistics& o) {
+  bodyPairs += o.bodyPairs;
+  boundingSphereRejections += o.boundingSphereRejections;
+  approachRejections += o.approachRejections;
+  trianglePairsPruned += o.trianglePairsPruned;
+  trianglePairsChecked += o.trianglePairsChecked;
+  fallbacks += o.fallbacks;
+  rawContacts += o.rawContacts;
+  contacts += o.contacts;
+  return *this;
+}
+
+bool boundingSpheresWithinContactDistance(const geometry::RigidShape& first, const Pose& firstPose,
+                                          const geometry::RigidShape& second,
+                                          const Pose& secondPose, double epsilon) {
+  const double reach = first.boundingRadius + second.boundingRadius + 2.0 * epsilon;
+  return (secondPose.position - firstPose.position).squaredNorm() < reach * reach;
+}
+
+MeshContactFinder::MeshContactFinder(MeshContactOptions options) : options_(std::move(options)) {}
+
+namespace {
+
+Vector3d outwardUnitNormal(const Triangle& t) {
+  const Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
+  const double norm = n.norm();
+  return norm > 0.0 ? Vector3d(n / norm) : Vector3d::Zero();
+}
+
+bool isNearVertex(const Vector3d& p, const Triangle& t, double tolerance) {
+  for (int k = 0; k < 3; ++k)
+    if ((p - t[k]).squaredNorm() <= tolerance * tolerance) return true;
+  return false;
+}
+
+bool isInsideFace(const Vector3d& p, const Triangle& t, double tolerance) {
+  for (int k = 0; k < 3; ++k) {
+    const Vector3d edge = t[(k + 1) % 3] - t[k];
+    const double length = edge.norm();
+    if (!(edge.cross(p - t[k]).norm() > tolerance * length)) return false;  // on edge k's line
+  }
+  return true;
+}
+
+// Normal (first -> second, not normalised) of two touching triangles from their contact
+// features: a vertex of one touching the other (on its face or an edge) takes the other's face
+// normal; a point inside a face (an edge piercing it) takes that face's normal; otherwise
+// (edge on edge, vertex on vertex) the difference of the outward normals.
+Vector3d touchingNormal(const geometry::TriangleDistanceResult& r, const Triangle& first,
+                        const Triangle& second, double tolerance) {
+  const Vector3d firstNormal = outwardUnitNormal(first), secondNormal = outwardUnitNormal(second);
+  const bool firstVertex = isNearVertex(r.pointOnFirst, first, tolerance);
+  const bool secondVertex = isNearVertex(r.pointOnSecond, second, tolerance);
+  if (firstVertex && !secondVertex) return -secondNormal;
+  if (secondVertex && !firstVertex) return firstNormal;
+  if (!firstVertex && !secondVertex) {
+    if (isInsideFace(r.pointOnSecond, second, tolerance)) return -secondNormal;
+    if (isInsideFace(r.pointOnFirst, first, tolerance)) return firstNormal;
+  }
+  return firstNormal - secondNormal;
+}
+
+}  // namespace
+
+std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pose& firstPose,
+                                    const geometry::RigidShape& second, const Pose& secondPose,
+                                    std::vector<ContactPoint>& contacts,
+                                    MeshContactStatistics* statistics) {
+  const double eps = options_.epsilon;
+  if (!(eps > 0.0)) throw std::invalid_argument("MeshContactFinder: epsilon must be > 0");
+  const double contactDistance = 2.0 * eps;
+  MeshContactStatistics counts;
+  counts.bodyPairs = 1;
+
+  // Second body in the first body's frame: x_1 = rotation * x_2 + shift.
+  const Matrix3d firstRotation = firstPose.orientation.toRotationMatrix();
+  const Matrix3d rotation =
+      firstRotation.transpose() * secondPose.orientation.toRotationMatrix();
+  const Vector3d shift = firstRotation.transpose() * (secondPose.position - firstPose.position);
+  const double centreDistance = shift.norm();
+  const double sphereGap = centreDistance - first.boundingRadius - second.boundingRadius;
+  const auto finish = [&](std::size_t appended) {
+    counts.contacts = appended;
+    if (statistics) *statistics += counts;
+    return appended;
+  };
+  if (!(sphereGap < contactDistance)) {
+    ++counts.boundingSphereRejections;
+    return finish(0);
+  }
+  if (options_.approachPrecheck && !options_.approachPrecheck(firstPose, secondPose, sphereGap)) {
+    ++counts.approachRejections;
+    return finish(0);
+  }
+
+  // Triangles of each body whose bounding sphere reaches the other body's bounding sphere.
+  nearFirst_.clear();
+  nearSecond_.clear();
+  for (std::size_t i = 0; i < first.triangleCount(); ++i) {
+    const double reach = first.triangleRadii[i] + second.boundingRadius + contactDistance;
+    if ((first.triangleCentres[i] - shift).squaredNorm() < reach * reach) nearFirst_.push_back(int(i));
+  }
+  secondCentres_.clear();
+  for (std::size_t j = 0; j < second.triangleCount(); ++j) {
+    const Vector3d centre = rotation * second.triangleCentres[j] + shift;
+    const double reach = second.triangleRadii[j] + first.boundingRadius + contactDistance;
+    if (centre.squaredNorm() < reach * reach) {
+      nearSecond_.push_back(int(j));
+      secondCentres_.push_back(centre);
+    }
+  }
+  secondTriangles_.clear();
+  for (int j : nearSecond_) {
+    const Triangle& t = second.bodyTriangles[std::size_t(j)];
+    secondTriangles_.emplace_back(rotation * t[0] + shift, rotation * t[1] + shift,
+                                  rotation * t[2] + shift);
+  }
+  pairFirst_.clear();
+  pairSecond_.clear();
+  pairIndex_.clear();
+  for (int i : nearFirst_) {
+    const Vector3d& centre = first.triangleCentres[std::size_t(i)];
+    const double radius = first.triangleRadii[std::size_t(i)] + contactDistance;
+    for (std::size_t k = 0; k < nearSecond_.size(); ++k) {
+      const double reach = radius + second.triangleRadii[std::size_t(nearSecond_[k])];
+      if ((centre - secondCentres_[k]).squaredNorm() < reach * reach) {
+        pairFirst_.push_back(first.bodyTriangles[std::size_t(i)]);
+        pairSecond_.push_back(secondTriangles_[k]);
+        pairIndex_.push_back({i, int(k)});
+      }
+    }
+  }
+  const std::size_t pairs = pairFirst_.size();
+  counts.trianglePairsChecked = pairs;
+  counts.trianglePairsPruned = first.triangleCount() * second.triangleCount() - pairs;
+
+  results_.resize(pairs);
+  switch (options_.method) {
+    case TriangleDistanceMethod::Exact:
+      geometry::triangleDistances(pairFirst_.data(), pairSecond_.data(), pairs, results_.data());
+      break;
+    case TriangleDistanceMethod::Penalty: {
+      geometry::PenaltyOptions penalty;
+      penalty.newtonIterations = options_.newtonIterations;
+      geometry::penaltyTriangleDistances(pairFirst_.data(), pairSecond_.data(), pairs, penalty,
+                                         results_.data());
+      break;
+    }
+    case TriangleDistanceMethod::Hybrid: {
+      geometry::HybridOptions hybrid;
+      hybrid.contactDistance = contactDistance;
+      hybrid.newtonIterations = options_.newtonIterations;
+      geometry::HybridStatistics hybridCounts;
+      geometry::hybridTriangleDistances(pairFirst_.data(), pairSecond_.data(), pairs, hybrid,
+                                        results_.data(), &hybridCounts);
+      counts.fallbacks = hybridCounts.fallbacks();
+      break;
+    }
+  }
+
+  // Raw contacts, in the first body's frame.
+  raw_.clear();
+  for (std::size_t p = 0; p < pairs; ++p) {
+    const geometry::TriangleDistanceResult& r = results_[p];
+    if (!(r.distance < contactDistance)) continue;
+    ContactPoint c;
+    c.point = 0.5 * (r.pointOnFirst + r.pointOnSecond);
+    c.distance = r.distance;
+    c.penetration = eps - 0.5 * r.distance;
+    c.firstTriangle = pairIndex_[p][0];
+    c.secondTriangle = nearSecond_[std::size_t(pairIndex_[p][1])];
+    const double h = std::max(pairFirst_[p].longestEdge(), pairSecond_[p].longestEdge());
+    Vector3d direction = r.pointOnSecond - r.pointOnFirst;
+    if (!(r.distance > kDirectionTolerance * h)) {
+      direction = touchingNormal(r, pairFirst_[p], pairSecond_[p], kDirectionTolerance * h);
+      if (!(direction.squaredNorm() > 1e-12)) direction = shift;
+      if (!(direction.squaredNorm() > 0.0)) direction = Vector3d::UnitX();
+    }
+    c.normal = direction.normalized();
+    raw_.push_back(c);
+  }
+  counts.rawContacts = raw_.size();
+
+  // De-duplication: running means of close contacts with close normals.
+  const std::size_t begin = contacts.size();
+  const double mergeDistance = std::min(first.minimumEdgeLength, second.minimumEdgeLength);
+  std::vector<Vector3d>& normalSums = normalSums_;  // sums of merged unit normals
+  normalSums.clear();
+  for (const ContactPoint& c : raw_) {
+    bool merged = false;
+    if (options_.deduplicate)
+      for (std::size_t k = begin; k < contacts.size(); ++k) {
+        ContactPoint& m = contacts[k];
+        if ((c.point - m.point).squaredNorm() < mergeDistance * mergeDistance &&
+            c.normal.dot(m.normal) >= options_.mergeNormalCosine) {
+          const double n = double(m.mergedCount);
+          m.point = (n * m.point + c.point) / (n + 1.0);
+          m.distance = (n * m.distance + c.distance) / (n + 1.0);
+          m.penetration = eps - 0.5 * m.distance;
+          Vector3d& sum = normalSums[k - begin];
+          sum += c.normal;
+          if (sum.squaredNorm() > 0.0) m.normal = sum.normalized();
+          ++m.mergedCount;
+          merged = true;
+          break;
+        }
+      }
+    if (!merged) {
+      contacts.push_back(c);
+      normalSums.push_back(c.normal);
+    }
+  }
+  // To the world frame.
+  for (std::size_t k = begin; k < contacts.size(); ++k) {
+    contacts[k].point = firstRotation * contacts[k].point + firstPose.position;
+    contacts[k].normal = firstRotation * contacts[k].normal;
+  }
+  return finish(contacts.size() - begin);
+}
+
+}  // namespace spacetree::contact

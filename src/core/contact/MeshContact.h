@@ -1,0 +1,134 @@
+// Contacts between two posed rigid triangulated particles (paper §3 and §6.2).
+//
+// Convention (paper §3, "epsilon formalism"): each particle carries a soft halo of depth eps
+// around its rigid surface. Two triangles whose distance d is below 2 eps yield a contact:
+//   - point:  the midpoint of their shortest segment (halfway between the two surfaces);
+//   - normal: unit vector along that segment, from the first body's surface towards the second's
+//             (n_ij of eq. (1) is normal * |n|, pointing from the contact point onto the surface
+//             of body j = second);
+//   - |n| = d / 2, the distance from the contact point to either surface (|n| <= eps);
+//   - penetration = eps - |n| = eps - d / 2 in (0, eps]: the halo overlap that the spring of
+//     eq. (1) acts on. A penetration of eps means the rigid surfaces touch (d = 0); more than
+//     eps cannot be represented (the bodies have interpenetrated, which a small enough time
+//     step prevents).
+// For d = 0 (touching or intersecting triangles) the segment has no direction; the normal is
+// then taken from the contact features: a vertex of one triangle touching the other triangle
+// takes that triangle's outward normal (negated when it belongs to the second body); a point
+// inside a face (an edge piercing the face) takes that face's normal; otherwise (edge on edge,
+// vertex on vertex) nA - nB, the difference of the outward normals (A's points towards B, B's
+// towards A); if that vanishes, the direction from the first centre to the second. The same
+// rule applies below kDirectionTolerance * h (h: longest edge of the pair), where the segment's
+// direction is dominated by rounding.
+//
+// Pipeline per body pair: (1) bounding spheres (radius about the centre of mass) farther apart
+// than 2 eps: no contact; (2) optional approach precheck hook (e.g. bodies separating fast
+// enough to stay apart) may skip the pair; (3) triangle pruning by bounding spheres: a triangle
+// of one body is kept only if its sphere reaches within 2 eps of the other body's bounding
+// sphere, and a pair of kept triangles only if their spheres are within 2 eps; (4) the
+// surviving triangle pairs go to the chosen distance method in one batch (Exact:
+// triangleDistance; Penalty: the batched penalty-Newton kernel, uncertified; Hybrid: penalty
+// with certified fallback, contact decisions identical to Exact's); (5) contacts (d < 2 eps);
+// (6) de-duplication (paper §3, step 2): a contact is averaged into an earlier one (point,
+// normal, distance; running means) when its point is closer than the smaller of the two
+// particles' minimum edge lengths to that contact's mean point and the normals' cosine is at
+// least mergeNormalCosine. Typical duplicates: a vertex touching a face is found once per
+// triangle around the vertex.
+// Work is done in the first body's frame (only the second body's triangles near the first
+// are transformed); contacts are returned in the world frame.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "geometry/HybridTriangleDistance.h"
+#include "geometry/RigidShape.h"
+#include "geometry/TriangleDistance.h"
+
+namespace spacetree::contact {
+
+enum class TriangleDistanceMethod { Exact, Penalty, Hybrid };
+
+// "exact", "penalty", "hybrid" <-> enum; parse throws std::invalid_argument naming the word.
+TriangleDistanceMethod parseTriangleDistanceMethod(const std::string& name);
+const char* triangleDistanceMethodName(TriangleDistanceMethod method);
+
+// Where a shape is: x_world = orientation * x_body + position (position = centre of mass).
+struct Pose {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+};
+
+// Below this times the longest edge, a triangle distance counts as touching for the normal.
+constexpr double kDirectionTolerance = 1e-9;
+
+struct MeshContactOptions {
+  double epsilon = 0.0;  // halo depth; contact when the triangle distance < 2 epsilon
+  TriangleDistanceMethod method = TriangleDistanceMethod::Hybrid;
+  int newtonIterations = 8;        // penalty and hybrid (4 or 8 in the paper)
+  bool deduplicate = true;
+  double mergeNormalCosine = 0.9;  // "reasonably close normals": within about 25 degrees
+  // Optional hook after the bounding-sphere check: gets both poses and the gap between the
+  // bounding spheres (centre distance - radii, may be negative); return false to skip the pair.
+  std::function<bool(const Pose& first, const Pose& second, double sphereGap)> approachPrecheck;
+};
+
+struct ContactPoint {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // world frame
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX(); // unit, from first body towards second
+  double distance = 0.0;     // surface distance d (|n| = d / 2)
+  double penetration = 0.0;  // epsilon - d / 2
+  int firstTriangle = -1;    // triangles of the first contact merged into this one
+  int secondTriangle = -1;
+  int mergedCount = 1;       // raw contacts averaged into this one
+};
+
+struct MeshContactStatistics {
+  std::size_t bodyPairs = 0;
+  std::size_t boundingSphereRejections = 0;
+  std::size_t approachRejections = 0;
+  std::size_t trianglePairsPruned = 0;   // rejected by triangle bounding spheres
+  std::size_t trianglePairsChecked = 0;  // given to the distance method
+  std::size_t fallbacks = 0;             // hybrid: pairs that fell back to the exact method
+  std::size_t rawContacts = 0;           // triangle pairs closer than 2 epsilon
+  std::size_t contacts = 0;              // after de-duplication
+
+  MeshContactStatistics& operator+=(const MeshContactStatistics& o);
+};
+
+// Reusable contact search (owns scratch buffers: one per thread).
+class MeshContactFinder {
+ public:
+  explicit MeshContactFinder(MeshContactOptions options);
+  const MeshContactOptions& options() const { return options_; }
+
+  // Appends the contacts of `first` at `firstPose` with `second` at `secondPose` to `contacts`
+  // and returns how many were appended; statistics, if given, are accumulated. Throws
+  // std::invalid_argument for epsilon <= 0.
+  std::size_t find(const geometry::RigidShape& first, const Pose& firstPose,
+                   const geometry::RigidShape& second, const Pose& secondPose,
+                   std::vector<ContactPoint>& contacts, MeshContactStatistics* statistics = nullptr);
+
+ private:
+  MeshContactOptions options_;
+  std::vector<int> nearFirst_, nearSecond_;
+  std::vector<Eigen::Vector3d> secondCentres_;
+  std::vector<geometry::Triangle> secondTriangles_;
+  std::vector<geometry::Triangle> pairFirst_, pairSecond_;
+  std::vector<std::array<int, 2>> pairIndex_;
+  std::vector<geometry::TriangleDistanceResult> results_;
+  std::vector<ContactPoint> raw_;
+  std::vector<Eigen::Vector3d> normalSums_;
+};
+
+// Whether the bounding spheres come within 2 epsilon (the first precheck).
+bool boundingSpheresWithinContactDistance(const geometry::RigidShape& first, const Pose& firstPose,
+                                          const geometry::RigidShape& second,
+                                          const Pose& secondPose, double epsilon);
+
+}  // namespace spacetree::contact
