@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <vector>
 
 #include "atom.h"
 #include "error.h"
@@ -84,10 +85,11 @@ void ComputeTreestats::compute_vector()
     deepest = g.deepestLevel;
     seconds = fix->last_update_seconds();
     const int nlevels = std::min<int>(kLevels,int(g.levels.size()));
+    const std::vector<std::uint64_t> vertices = grid->verticesPerLevel();
     for (int l = 0; l < nlevels; l++) {
       local[kSummary + kPerLevel*l + 0] = double(g.levels[l].cells);
-      local[kSummary + kPerLevel*l + 1] = double(g.levels[l].vertices);
-      local[kVertices] += double(g.levels[l].vertices);
+      local[kSummary + kPerLevel*l + 1] = double(vertices[l]);
+      local[kVertices] += double(vertices[l]);
     }
     const int tlevels = std::min<int>(kLevels,int(t.levels.size()));
     for (int l = 0; l < tlevels; l++) {

@@ -109,6 +109,7 @@ void FixSpacetree::init()
   // The grid and the tree must agree on the halo and on the deepest level.
   spacetree::AdaptiveGridOptions wanted = options;
   wanted.epsilon = 0.5*neighbor->skin;
+  wanted.pairsFromCaller = true;  // the builder's sweep reports its pairs (after_sweep)
   const int neighbor_max = neighbor->spacetree->options.maxLevel;
   if (wanted.maxLevel > neighbor_max) wanted.maxLevel = neighbor_max;
   if (!grid_ || grid_->options().epsilon != wanted.epsilon ||
@@ -128,6 +129,18 @@ void FixSpacetree::build_tree(spacetree::Spacetree &tree, const double (*x)[3],
   grid_->update(x,v,radius,nall);
   update_seconds = MPI_Wtime() - t0;
   grid_->buildSpacetree(tree,x,radius,nall,nlocal);
+}
+
+void FixSpacetree::after_sweep(const double (*x)[3], const double (*v)[3], const double *radius,
+                               int nall, const std::vector<int> &pair_i,
+                               const std::vector<int> &pair_j)
+{
+  if (options.type != spacetree::GridType::Reluctant) return;
+  const double t0 = MPI_Wtime();
+  pair_second.resize(pair_j.size());
+  for (size_t k = 0; k < pair_j.size(); k++) pair_second[k] = pair_j[k] < 0 ? ~pair_j[k] : pair_j[k];
+  grid_->refineForPairs(x,v,radius,nall,pair_i.data(),pair_second.data(),pair_i.size());
+  update_seconds += MPI_Wtime() - t0;
 }
 
 void FixSpacetree::end_of_step()

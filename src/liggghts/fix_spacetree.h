@@ -21,6 +21,7 @@ FixStyle(spacetree,FixSpacetree)
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fix.h"
 #include "tree/AdaptiveGrid.h"
@@ -40,6 +41,12 @@ class FixSpacetree : public Fix {
   void build_tree(spacetree::Spacetree &tree, const double (*x)[3], const double (*v)[3],
                   const double *radius, int nall, int nlocal);
 
+  // Called after the sweep on that tree with the listed pairs (j may carry the builder's
+  // touching mark ~j): the reluctant grid refines for the approaching ones (paper: refinement
+  // triggered by the traversal's comparisons; the particles drop at the next build).
+  void after_sweep(const double (*x)[3], const double (*v)[3], const double *radius, int nall,
+                   const std::vector<int> &pair_i, const std::vector<int> &pair_j);
+
   const spacetree::AdaptiveGrid *grid() const { return grid_.get(); }
   double last_update_seconds() const { return update_seconds; }
   int max_level() const { return options.maxLevel; }
@@ -52,6 +59,7 @@ class FixSpacetree : public Fix {
   double update_seconds;
   int vtk_every;
   std::string vtk_file;
+  std::vector<int> pair_second;  // scratch: pair_j without the touching mark
 };
 
 }

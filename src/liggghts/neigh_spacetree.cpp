@@ -179,6 +179,18 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
     st.first[i+1]++;
   }, exact_cut ? 0.0 : 1e-12);
 
+  // The reluctant grid refines for the pairs this sweep found (used from the next build on).
+  if (st.grid_fix) {
+    try {
+      st.grid_fix->after_sweep(reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL),
+                               (nall && comm->ghost_velocity)
+                                 ? reinterpret_cast<const double (*)[3]>(atom->v[0]) : NULL,
+                               contact_radius,nall,st.pair_i,st.pair_j);
+    } catch (const std::exception &e) {
+      error->one(FLERR,e.what());
+    }
+  }
+
   // 2. Per-atom neighbour arrays (CSR), each sorted by index for a canonical order
   //    (touching pairs, stored as ~j, sort first; the order is still deterministic).
   int maxcount = 0;

@@ -10,8 +10,13 @@ TEST is one of (see `check_adaptive_grid.py list`):
                    ranks (multisets) and on 1 rank (sets); the adaptive grids must refine
   moving:NP        randomised: a dilute 1:20 continuous gas with fast random velocities
                    (seed from $SPACETREE_TEST_SEED, default 701), lists rebuilt every step, pairs
-                   dumped every 2 of 240 steps, for all three grid types; the adaptive and
+                   dumped every 3 of 180 steps, for all three grid types; the adaptive and
                    reluctant grids must refine and coarsen on many steps while staying exact
+  paper71          the §7.1 deck (inputs/paper71/in.two_spheres_grid, 40 000 steps) for the three
+                   grids: the spheres touch on the same steps; regular and adaptive compare the
+                   pair only shortly before impact (<= 8 comparisons per step); reluctant compares
+                   it over more steps but uses fewer cells than adaptive, which uses far fewer
+                   than regular
   bad:NAME         bad input stops with a non-zero exit code and a clear ERROR (BAD_INPUT)
 
 Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.  Reuses compare_runs.py's runner,
@@ -33,8 +38,8 @@ GRIDS = ["regular", "adaptive", "reluctant"]
 DECK = "in.grid_pairs"
 PAIR_CASE_NAMES = ["r10_cont_periodic", "r100_bi_periodic", "r100_cont_walled"]
 
-MOVING_STEPS = 240
-MOVING_DUMP = 2
+MOVING_STEPS = 180
+MOVING_DUMP = 3
 
 # name: (fixargs, extra -var settings, regex the ERROR line must match)
 BAD_INPUT = {
@@ -130,6 +135,56 @@ def test_moving(R, np):
     print("  mean cells per step: %s" % ", ".join("%s %.0f" % (g, cells[g]) for g in GRIDS))
 
 
+def test_paper71(R):
+    deck = os.path.join(cr.ROOT, "inputs", "paper71", "in.two_spheres_grid")
+    res = {}
+    for grid in GRIDS:
+        rc, text = R.run(deck, grid, 1, {"grid": grid, "every": "1"})
+        th = thermo_columns(text)
+        touching = [int(s) for s, d in zip(th["Step"], th["dist"]) if d <= 0.11]
+        compared = [t for t, c in zip(th["Time"], th["ts[1]"]) if c > 0]
+        res[grid] = dict(touching=touching, compared=compared, max_comp=max(th["ts[1]"]),
+                         total=sum(th["ts[1]"]), cells=sum(th["ts[5]"]) / len(th["ts[5]"]),
+                         deepest=max(th["ts[4]"]))
+        r = res[grid]
+        print("  %-9s touching steps %s..%s (%d), comparisons on %d steps (first at t=%.3f s), max %d, "
+              "total %d, mean cells %.1f, deepest level %d"
+              % (grid, touching[0] if touching else None, touching[-1] if touching else None, len(touching),
+                 len(compared), compared[0] if compared else -1, r["max_comp"], r["total"], r["cells"],
+                 r["deepest"]))
+    if not res["regular"]["touching"]:
+        raise cr.Fail("the spheres never touched (expected at t ~ 2.68 s)")
+    for grid in GRIDS:
+        r = res[grid]
+        if r["touching"] != res["regular"]["touching"]:
+            raise cr.Fail("%s: the spheres touch on other steps than with the regular grid" % grid)
+        if not 1 <= r["max_comp"] <= 8:
+            raise cr.Fail("%s: %d comparisons in one step (expected 1..8)" % (grid, r["max_comp"]))
+    for grid in ("regular", "adaptive"):
+        if res[grid]["compared"][0] < 2.0:
+            raise cr.Fail("%s compares the far-apart spheres already at t = %.3f s" % (grid, res[grid]["compared"][0]))
+    if not res["reluctant"]["total"] > res["adaptive"]["total"]:
+        raise cr.Fail("reluctant should make more comparisons than adaptive")
+    if not res["reluctant"]["cells"] < res["adaptive"]["cells"] < 0.01 * res["regular"]["cells"]:
+        raise cr.Fail("expected cells: reluctant < adaptive < 1%% of regular")
+    # the leaf-cell VTK output of the fix: one file per output step, as many voxels as leaves
+    rc, text = R.run(deck, "adaptive_vtk", 1, {"grid": "adaptive", "every": "13000", "nsteps": "26000",
+                                               "vtk": "13000"})
+    th = thermo_columns(text)
+    for step, leaves in zip(th["Step"][1:], th["ts[6]"][1:]):
+        path = os.path.join(R.work, "grid_adaptive_%d.vtk" % int(step))
+        if not os.path.exists(path):
+            raise cr.Fail("fix spacetree vtk wrote no %s" % path)
+        with open(path, "rb") as f:
+            head = f.read(4096)
+        m = re.search(rb"CELLS (\d+) (\d+)", open(path, "rb").read())
+        if not head.startswith(b"# vtk DataFile Version 3.0") or not m or int(m.group(1)) != int(leaves):
+            raise cr.Fail("%s: expected a legacy VTK file with %d cells (the leaf count of compute "
+                          "treestats)" % (path, leaves))
+        print("  %s: %d leaf cells, as compute treestats reports" % (os.path.basename(path), leaves))
+    print("  PASS")
+
+
 def test_bad(R, name):
     fixargs, extra, regex = BAD_INPUT[name]
     v = dict(extra, data=R.gen("bad.data", BAD_DATA), fixargs=fixargs)
@@ -148,7 +203,7 @@ def test_bad(R, name):
 
 def list_tests():
     t = ["pairs:%s:%d" % (c, n) for c in PAIR_CASE_NAMES for n in (1, 2)]
-    t += ["moving:1", "moving:2"] + ["bad:%s" % n for n in BAD_INPUT]
+    t += ["moving:1", "moving:2", "paper71"] + ["bad:%s" % n for n in BAD_INPUT]
     return t
 
 
@@ -177,6 +232,8 @@ def main():
             test_pairs(R, parts[1], int(parts[2]))
         elif parts[0] == "moving" and len(parts) == 2:
             test_moving(R, int(parts[1]))
+        elif parts == ["paper71"]:
+            test_paper71(R)
         elif parts[0] == "bad" and len(parts) == 2 and parts[1] in BAD_INPUT:
             test_bad(R, parts[1])
         else:

@@ -313,3 +313,60 @@ TEST(AdaptiveGrid, LeafCellsTileTheCubeAndHoldEveryParticleAtItsHostLevelOrFiner
     }
   }
 }
+
+TEST(AdaptiveGrid, ReluctantFedByTheCallersSweepStaysExactAndAdapts) {
+  // pairsFromCaller: no second sweep inside update(); the pairs of the step's own sweep drive
+  // the refinement for the next step. Lists must stay exact; the grid must still refine for
+  // approaching pairs and coarsen behind them.
+  const double eps = 0.001;
+  Scene s = polydisperse(1200, 4, 0.005, 10.0, 17);
+  AdaptiveGridOptions options;
+  options.type = GridType::Reluctant;
+  options.epsilon = eps;
+  options.pairsFromCaller = true;
+  AdaptiveGrid grid(options);
+  Spacetree tree(SpacetreeOptions{eps});
+  std::uint64_t refinements = 0, coarsenings = 0;
+  int deepestSeen = 0;
+  for (int step = 0; step < 25; ++step) {
+    grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+    expectAdmissible(grid, s, eps);
+    const PairSet found = gridPairs(grid, tree, s);
+    ASSERT_EQ(found, bruteForce(s, eps)) << "step " << step;
+    std::vector<int> first, second;
+    for (const auto& p : found) {
+      first.push_back(p.first);
+      second.push_back(p.second);
+    }
+    grid.refineForPairs(s.pos(), s.vel(), s.r.data(), s.size(), first.data(), second.data(), first.size());
+    refinements += grid.statistics().refinements;
+    if (step > 0) coarsenings += grid.statistics().coarsenings;
+    deepestSeen = std::max(deepestSeen, grid.statistics().deepestLevel);
+    s.move(0.004);
+  }
+  EXPECT_GT(refinements, 0u);
+  EXPECT_GT(coarsenings, 0u);
+  EXPECT_GT(deepestSeen, grid.statistics().regularDepth) << "approaching pairs must drop";
+}
+
+TEST(AdaptiveGrid, AdaptiveCoarseningNeverMovesAParticle) {
+  // update() skips the re-host after adaptive coarsening: the host levels it reports must be
+  // what a fresh re-host on the coarsened grid gives. A second update with the particles
+  // standing still re-hosts from scratch and must agree, level for level.
+  const double eps = 0.0005;
+  Scene s = polydisperse(600, 3, 0.003, 40.0, 18);
+  AdaptiveGridOptions options;
+  options.epsilon = eps;
+  AdaptiveGrid grid(options);
+  std::uint64_t coarsenings = 0;
+  for (int step = 0; step < 12; ++step) {
+    grid.update(s.pos(), s.vel(), s.r.data(), s.size());
+    coarsenings += step > 0 ? grid.statistics().coarsenings : 0;
+    const std::vector<int> hosts = grid.hostLevels();
+    AdaptiveGrid copy = grid;
+    copy.update(s.pos(), s.vel(), s.r.data(), s.size());
+    ASSERT_EQ(copy.hostLevels(), hosts) << "step " << step;
+    s.move(0.01);
+  }
+  EXPECT_GT(coarsenings, 0u);
+}

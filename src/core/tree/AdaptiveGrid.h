@@ -36,6 +36,9 @@ struct AdaptiveGridOptions {
   int shock = 8;                    // heat added to vertices created by a refinement (reluctant)
   int coarseningThreshold = 4;      // a cooler vertex may be coarsened (reluctant); < shock
   double padding = 0.25;            // cube margin per side, relative to the particle extent
+  // Reluctant only: the caller reports the close pairs its own sweep found (refineForPairs)
+  // instead of update() searching them with a second sweep.
+  bool pairsFromCaller = false;
 };
 
 class AdaptiveGrid {
@@ -48,6 +51,13 @@ class AdaptiveGrid {
   // The cube is re-chosen (grid reset to the start-off grid) when a particle leaves it or no
   // longer fits the root cell.
   void update(const double (*x)[3], const double (*v)[3], const double* radius, int n);
+
+  // Reluctant grid with pairsFromCaller: refines for the pairs (first[k], second[k]) that the
+  // sweep on this step's tree found (bounding spheres + eps overlap), keeping those that
+  // approach (v may be nullptr). The refinement is what the paper triggers from inside the
+  // traversal; particles drop into the new cells at the next update().
+  void refineForPairs(const double (*x)[3], const double (*v)[3], const double* radius, int n,
+                      const int* first, const int* second, std::size_t count);
 
   // Builds `tree` on this grid's cube with this grid's host levels (tree options must use the
   // same epsilon). Particles must be those of the last update().
@@ -69,9 +79,11 @@ class AdaptiveGrid {
   template <class F>
   void forEachLeafCell(F&& f) const;
   std::uint64_t leafCellCount() const;
+  // Non-hanging vertices per level (index = level); computed on request, not per update.
+  std::vector<std::uint64_t> verticesPerLevel() const;
 
  private:
-  using CellSet = std::unordered_set<std::uint64_t>;
+  using CellSet = VertexKeySet;  // open addressing: look-ups dominate the update
   using Markers = std::unordered_map<std::uint64_t, std::int64_t>;
   using KeySet = VertexKeySet;
   struct Index3 {
@@ -92,7 +104,8 @@ class AdaptiveGrid {
   bool refineCell(int level, std::int64_t i, std::int64_t j, std::int64_t k);
   bool refineAroundVertex(int level, const Index3& v);
   void refineNaively(const double (*x)[3], int n);
-  void refineReluctantly(const double (*x)[3], const double (*v)[3], const double* radius, int n);
+  void searchClosePairs(const double (*x)[3], const double (*v)[3], const double* radius, int n);
+  void refineForClosePairs(const double (*x)[3], const double* radius, int n);
   void updateHeatMarkers(const double (*x)[3], int n);
   void coarsen(const double (*x)[3], int n);
   void collectStatistics();
@@ -110,6 +123,10 @@ class AdaptiveGrid {
   std::vector<int> host_, admissible_;
   std::vector<double> required_;
   std::vector<std::pair<int, int>> closePairs_;
+  // Scratch of coarsen(), kept between updates (no reallocation and page faults per update).
+  std::vector<KeySet> keep_;
+  KeySet parentsOfRefined_;
+  std::vector<std::uint64_t> removals_;
   AdaptiveGridStatistics stats_;
 };
 
@@ -125,7 +142,7 @@ void AdaptiveGrid::forEachLeafCell(F&& f) const {
         if (!isRefined(regularDepth_, i, j, k)) f(regularDepth_, i, j, k);
   // Below it: the children of refined cells that are not refined themselves.
   for (int l = regularDepth_ + 1; l <= depth; ++l)
-    for (std::uint64_t parentKey : refined_[l - 1]) {
+    for (std::uint64_t parentKey : refined_[l - 1].keys) {
       const VertexIndex c = unpackVertexKey(parentKey);
       for (std::int64_t a = 3 * c.i; a < 3 * c.i + 3; ++a)
         for (std::int64_t b = 3 * c.j; b < 3 * c.j + 3; ++b)

@@ -1,5 +1,5 @@
 // Counters an AdaptiveGrid keeps about its last update() (virtual links per level come from
-// the Spacetree sweep, which owns them).
+// the Spacetree sweep, which owns them; vertices from AdaptiveGrid::verticesPerLevel()).
 #pragma once
 
 #include <cstdint>
@@ -10,7 +10,6 @@ namespace spacetree {
 struct AdaptiveLevelStatistics {
   double meshSize = 0.0;
   std::uint64_t cells = 0;          // cells of this level that exist (children of refined cells)
-  std::uint64_t vertices = 0;       // non-hanging vertices: all 8 adjacent cells exist
   std::uint64_t realParticles = 0;  // particles hosted on this level
 };
 

@@ -1,5 +1,6 @@
 // Set of packed vertex keys with the list of its members: open addressing (VertexHashMap)
-// for fast membership, the list for iteration. Built up per update, never erased from.
+// for fast membership, the list for iteration. Members leave only in batches (eraseAll),
+// which rebuilds the table: no tombstones on the look-up path.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +30,7 @@ class VertexKeySet {
   }
 
   void insert(std::uint64_t key) {
+    if (capacity_ == 0) reserveMore(16);
     if (map_.find(key) != VertexHashMap::kAbsent) return;
     if (keys.size() >= capacity_) reserveMore(keys.size() + 16);  // keep load <= 1/2
     map_.insert(key, std::int32_t(keys.size()));
@@ -36,6 +38,21 @@ class VertexKeySet {
   }
 
   bool contains(std::uint64_t key) const { return capacity_ > 0 && map_.find(key) != VertexHashMap::kAbsent; }
+  std::size_t size() const { return keys.size(); }
+
+  // Removes every member of `removals` (keys that are not members are ignored).
+  void eraseAll(const std::vector<std::uint64_t>& removals) {
+    if (removals.empty() || keys.empty()) return;
+    VertexKeySet gone;
+    gone.reset(removals.size());
+    for (std::uint64_t k : removals) gone.insert(k);
+    std::size_t kept = 0;
+    for (std::uint64_t k : keys)
+      if (!gone.contains(k)) keys[kept++] = k;
+    keys.resize(kept);
+    map_.reset(capacity_);
+    for (std::size_t i = 0; i < keys.size(); ++i) map_.insert(keys[i], std::int32_t(i));
+  }
 
  private:
   VertexHashMap map_;
