@@ -266,7 +266,7 @@ def case_hopper(a):
     subprocess.run([sys.executable, gen, os.path.join(wd, "hopper.stl"), os.path.join(wd, "floor.stl")], check=True)
     n = a.hopper_steps
     rc, out, log = run(a, os.path.join(ROOT, "inputs", "hopper", "in.hopper"), wd, "hopper",
-                       dict(n=n, nx=a.hopper_nx, zlo=0.05, v0=1.0, dumpevery=n, meshdir=".",
+                       dict(n=n, nx=a.hopper_nx, a=0.007, zlo=0.05, v0=1.5, dumpevery=n, meshdir=".",
                             nstyle=a.hopper_neighbor), np_=2)
     check(rc == 0, "hopper: short run on 2 ranks")
     if rc != 0:
