@@ -5,11 +5,19 @@
 // half the contact distance 2 eps: a few triangle pairs are in contact, most are far apart.
 //
 // Usage: bench_triangle_distance [--out FILE.csv] [--triangles 12,40,...] [--orientations N]
-//                                [--min-seconds S] [--contact-distance T]
-// Writes one CSV row per (triangles, method); bench/plot_triangle_distance.py plots it.
+//                                [--min-seconds S] [--contact-distance T] [--iterations 4,8]
+//                                [--pipeline-out FILE.csv]
+// Writes one CSV row per (triangles, method) (--out "" skips this part);
+// bench/plot_triangle_distance.py plots it.
+// Second part (--pipeline-out, "" to skip): the whole contact search of contact/MeshContact.h
+// on the same kind of scenes (bounding-sphere precheck, triangle pruning, the method on the
+// surviving pairs, contacts, local-minimum filter, de-duplication): particle pairs per second
+// per method, with the pruned fraction of triangle pairs.
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <time.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -21,7 +29,9 @@
 #include <string>
 #include <vector>
 
+#include "contact/MeshContact.h"
 #include "geometry/HybridTriangleDistance.h"
+#include "geometry/RigidShape.h"
 #include "geometry/PenaltyTriangleDistance.h"
 #include "geometry/SphereMesh.h"
 #include "geometry/TriangleDistance.h"
@@ -35,9 +45,19 @@ struct Settings {
   std::string out = "bench/results/triangle_distance.csv";
   std::vector<int> triangles = {12, 20, 40, 80, 160, 320, 640, 1000};
   int orientations = 4;        // random orientation pairs per triangle count
-  double minSeconds = 0.3;     // per method and size: repeat until this much time is measured
+  double minSeconds = 0.5;     // per method and size: thread CPU time measured over all rounds
   double contactDistance = 0.02;  // 2 eps for spheres of radius 1
+  std::vector<int> iterations = {4, 8};  // Newton steps of the penalty and hybrid runs
+  std::string pipelineOut = "bench/results/mesh_contact.csv";  // "" skips the pipeline part
 };
+
+// CPU time of this thread: on a shared machine the time slices other processes take do not
+// count (wall-clock time would), so per-core throughput stays comparable between runs.
+double threadSeconds() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 struct Scene {
   std::vector<Triangle> first, second;  // the two particles' meshes, already placed
@@ -113,7 +133,7 @@ struct Method {
       run;
 };
 
-std::vector<Method> methods(double threshold) {
+std::vector<Method> methods(double threshold, const std::vector<int>& iterationCounts) {
   std::vector<Method> m;
   m.push_back({"exact", 0, [threshold](const Scene& s, auto& block, auto&, auto* decisions) {
                  return sweep(s, block, threshold, decisions,
@@ -122,7 +142,7 @@ std::vector<Method> methods(double threshold) {
                                                             s.second.size(), out);
                               });
                }});
-  for (int iterations : {4, 8}) {
+  for (int iterations : iterationCounts) {
     PenaltyOptions penalty;
     penalty.newtonIterations = iterations;
     m.push_back({"penalty", iterations,
@@ -177,6 +197,108 @@ std::string isaInUse() {
 #endif
 }
 
+// The contact pipeline per particle pair. Scenes as above, built from posed RigidShapes.
+void runPipeline(const Settings& settings) {
+  using namespace spacetree::contact;
+  std::ofstream csv(settings.pipelineOut);
+  if (!csv) {
+    std::fprintf(stderr, "cannot write %s\n", settings.pipelineOut.c_str());
+    std::exit(1);
+  }
+  csv << "triangles_per_particle,method,newton_iterations,us_per_particle_pair,"
+         "triangle_pairs_checked,pruned_fraction,fallback_fraction,contacts,speedup_vs_exact\n";
+  std::printf("\ncontact pipeline (MeshContactFinder), per particle pair:\n%-6s %-8s %3s %10s %9s %8s %9s %8s %8s\n",
+              "tri", "method", "it", "us/pair", "checked", "pruned", "fallback", "contacts", "speedup");
+  std::mt19937_64 rng(4048);
+  std::normal_distribution<double> n;
+  const double eps = 0.5 * settings.contactDistance;
+  for (int requested : settings.triangles) {
+    const RigidShape shape = RigidShape::fromMesh(latitudeLongitudeSphereMeshWithAbout(requested, 1.0));
+    struct PosedPair {
+      Pose first, second;
+    };
+    std::vector<PosedPair> scenes;
+    for (int o = 0; o < settings.orientations; ++o) {
+      PosedPair p;
+      p.first.orientation = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+      p.second.orientation = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+      const auto place = [&](const Pose& pose) {
+        return transformed(shape.bodyTriangles, pose.orientation.toRotationMatrix(), pose.position);
+      };
+      const std::vector<Triangle> a = place(p.first);
+      double x = 2.0 + eps;
+      for (int step = 0; step < 8; ++step) {  // surfaces eps apart (half of 2 eps)
+        p.second.position = Vector3d(x, 0, 0);
+        const double d = meshDistance(a, place(p.second));
+        if (std::abs(d - eps) < 1e-12) break;
+        x += eps - d;
+      }
+      scenes.push_back(p);
+    }
+    struct Run {
+      TriangleDistanceMethod method;
+      int iterations;
+    };
+    std::vector<Run> runs = {{TriangleDistanceMethod::Exact, 0}};
+    for (int it : settings.iterations) {
+      runs.push_back({TriangleDistanceMethod::Penalty, it});
+      runs.push_back({TriangleDistanceMethod::Hybrid, it});
+    }
+    std::vector<MeshContactFinder> finders;
+    for (const Run& r : runs) {
+      MeshContactOptions o;
+      o.epsilon = eps;
+      o.method = r.method;
+      o.newtonIterations = r.iterations ? r.iterations : 8;
+      finders.emplace_back(o);
+    }
+    std::vector<MeshContactStatistics> stats(runs.size());
+    std::vector<ContactPoint> contacts;
+    for (std::size_t m = 0; m < runs.size(); ++m)
+      for (const PosedPair& p : scenes) {
+        contacts.clear();
+        finders[m].find(shape, p.first, shape, p.second, contacts, &stats[m]);
+      }
+    constexpr int kRounds = 5;
+    std::vector<std::vector<double>> roundUs(runs.size());
+    for (int round = 0; round < kRounds; ++round)
+      for (std::size_t m = 0; m < runs.size(); ++m) {
+        std::size_t calls = 0;
+        const double start = threadSeconds();
+        double elapsed = 0.0;
+        do {
+          for (const PosedPair& p : scenes) {
+            contacts.clear();
+            finders[m].find(shape, p.first, shape, p.second, contacts);
+          }
+          calls += scenes.size();
+          elapsed = threadSeconds() - start;
+        } while (elapsed < settings.minSeconds / kRounds);
+        roundUs[m].push_back(1e6 * elapsed / double(calls));
+      }
+    std::vector<double> us(runs.size());
+    for (std::size_t m = 0; m < runs.size(); ++m) {
+      std::sort(roundUs[m].begin(), roundUs[m].end());
+      us[m] = roundUs[m][kRounds / 2];
+    }
+    for (std::size_t m = 0; m < runs.size(); ++m) {
+      const MeshContactStatistics& s = stats[m];
+      const double pairs = double(shape.triangleCount() * shape.triangleCount() * scenes.size());
+      const double checked = double(s.trianglePairsChecked) / double(scenes.size());
+      const double pruned = double(s.trianglePairsPruned) / pairs;
+      const double fallback = s.trianglePairsChecked ? double(s.fallbacks) / double(s.trianglePairsChecked) : 0.0;
+      const double perScene = double(s.contacts) / double(scenes.size());
+      const char* name = triangleDistanceMethodName(runs[m].method);
+      csv << shape.triangleCount() << ',' << name << ',' << runs[m].iterations << ',' << us[m] << ','
+          << checked << ',' << pruned << ',' << fallback << ',' << perScene << ',' << us[0] / us[m] << '\n';
+      std::printf("%-6zu %-8s %3d %10.2f %9.0f %7.2f%% %8.3f%% %8.2f %7.2fx\n", shape.triangleCount(), name,
+                  runs[m].iterations, us[m], checked, 100 * pruned, 100 * fallback, perScene, us[0] / us[m]);
+      std::fflush(stdout);
+    }
+  }
+  std::printf("wrote %s\n", settings.pipelineOut.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -194,13 +316,19 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--orientations")) settings.orientations = std::atoi(value("--orientations"));
     else if (!std::strcmp(argv[i], "--min-seconds")) settings.minSeconds = std::atof(value("--min-seconds"));
     else if (!std::strcmp(argv[i], "--contact-distance")) settings.contactDistance = std::atof(value("--contact-distance"));
+    else if (!std::strcmp(argv[i], "--iterations")) settings.iterations = parseList(value("--iterations"));
+    else if (!std::strcmp(argv[i], "--pipeline-out")) settings.pipelineOut = value("--pipeline-out");
     else {
       std::fprintf(stderr, "usage: %s [--out FILE] [--triangles a,b,...] [--orientations N] "
-                           "[--min-seconds S] [--contact-distance T]\n", argv[0]);
+                           "[--min-seconds S] [--contact-distance T] [--iterations 4,8] [--pipeline-out FILE]\n", argv[0]);
       return 2;
     }
   }
 
+  if (settings.out.empty()) {  // pipeline part only
+    if (!settings.pipelineOut.empty()) runPipeline(settings);
+    return 0;
+  }
   std::ofstream csv(settings.out);
   if (!csv) {
     std::fprintf(stderr, "cannot write %s\n", settings.out.c_str());
@@ -213,7 +341,7 @@ int main(int argc, char** argv) {
   std::printf("%-6s %-8s %3s %10s %10s %14s %10s %8s %8s\n", "tri", "method", "it", "pairs",
               "ns/pair", "pairs/s", "fallback", "contacts", "speedup");
 
-  const std::vector<Method> all = methods(settings.contactDistance);
+  const std::vector<Method> all = methods(settings.contactDistance, settings.iterations);
   std::mt19937_64 rng(2024);
   for (int requested : settings.triangles) {
     const std::vector<Triangle> mesh = latitudeLongitudeSphereWithAbout(requested, 1.0);
@@ -223,46 +351,60 @@ int main(int argc, char** argv) {
     const std::size_t pairsPerScene = mesh.size() * mesh.size();
     std::vector<TriangleDistanceResult> block(rowsPerBlock(scenes.front()) * mesh.size());
 
-    double exactNs = 0.0;
-    std::vector<char> exactDecisions;
-    for (const Method& method : all) {
-      // One untimed sweep for the bookkeeping: contacts, per-pair decisions, fallbacks.
-      HybridStatistics stats;
-      std::vector<char> decisions;
-      std::size_t contacts = 0;
-      for (const Scene& s : scenes) contacts += method.run(s, block, stats, &decisions);
-      if (method.newtonIterations == 0) exactDecisions = decisions;
-      // Timing: whole sweeps over all scenes until minSeconds / 3 have passed; the best of three
-      // such rounds, since the machine may be shared.
-      double bestNs = 1e300;
-      for (int round = 0; round < 3; ++round) {
+    // Bookkeeping first (one untimed sweep per method): contacts, per-pair decisions, fallbacks.
+    std::vector<HybridStatistics> stats(all.size());
+    std::vector<std::vector<char>> decisions(all.size());
+    std::vector<std::size_t> contacts(all.size(), 0);
+    for (std::size_t m = 0; m < all.size(); ++m)
+      for (const Scene& s : scenes) contacts[m] += all[m].run(s, block, stats[m], &decisions[m]);
+    // Timing: kRounds rounds, each running every method in turn for minSeconds / kRounds of
+    // thread CPU time (whole sweeps over all scenes); the median round per method. Interleaving
+    // the methods exposes them to the same machine load, so their ratios are like for like.
+    constexpr int kRounds = 5;
+    std::vector<std::vector<double>> roundNs(all.size());
+    for (int round = 0; round < kRounds; ++round)
+      for (std::size_t m = 0; m < all.size(); ++m) {
         std::size_t pairs = 0;
         HybridStatistics ignored;
-        const auto start = std::chrono::steady_clock::now();
+        const double start = threadSeconds();
         double elapsed = 0.0;
         do {
-          for (const Scene& s : scenes) method.run(s, block, ignored, nullptr);
+          for (const Scene& s : scenes) all[m].run(s, block, ignored, nullptr);
           pairs += pairsPerScene * scenes.size();
-          elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        } while (elapsed < settings.minSeconds / 3);
-        bestNs = std::min(bestNs, 1e9 * elapsed / double(pairs));
+          elapsed = threadSeconds() - start;
+        } while (elapsed < settings.minSeconds / kRounds);
+        roundNs[m].push_back(1e9 * elapsed / double(pairs));
       }
-      if (method.newtonIterations == 0) exactNs = bestNs;
-      const bool decisionsEqual = decisions == exactDecisions;
-      const double contactsPerScene = double(contacts) / double(scenes.size());
+    const auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v[v.size() / 2];
+    };
+    double exactNs = 0.0;
+    std::size_t exactIndex = 0;
+    for (std::size_t m = 0; m < all.size(); ++m)
+      if (all[m].newtonIterations == 0) {
+        exactNs = median(roundNs[m]);
+        exactIndex = m;
+      }
+    for (std::size_t m = 0; m < all.size(); ++m) {
+      const Method& method = all[m];
+      const double ns = median(roundNs[m]);
+      const bool decisionsEqual = decisions[m] == decisions[exactIndex];
+      const double contactsPerScene = double(contacts[m]) / double(scenes.size());
       const bool isHybrid = method.name == "hybrid";
-      const double fallback = isHybrid ? stats.fallbackFraction() : 0.0;
+      const double fallback = isHybrid ? stats[m].fallbackFraction() : 0.0;
       csv << mesh.size() << ',' << method.name << ',' << method.newtonIterations << ','
-          << pairsPerScene << ',' << bestNs << ',' << 1e9 / bestNs << ',' << fallback << ','
+          << pairsPerScene << ',' << ns << ',' << 1e9 / ns << ',' << fallback << ','
           << contactsPerScene << ',' << (decisionsEqual ? "yes" : "no") << ','
-          << exactNs / bestNs << ',' << isa << '\n';
+          << exactNs / ns << ',' << isa << '\n';
       std::printf("%-6zu %-8s %3d %10zu %10.1f %14.3e %9.3f%% %8.1f %7.2fx%s\n", mesh.size(),
-                  method.name.c_str(), method.newtonIterations, pairsPerScene, bestNs,
-                  1e9 / bestNs, 100 * fallback, contactsPerScene, exactNs / bestNs,
+                  method.name.c_str(), method.newtonIterations, pairsPerScene, ns, 1e9 / ns,
+                  100 * fallback, contactsPerScene, exactNs / ns,
                   isHybrid && !decisionsEqual ? "  DECISIONS DIFFER FROM EXACT" : "");
       std::fflush(stdout);
     }
   }
   std::printf("wrote %s (isa %s)\n", settings.out.c_str(), isa.c_str());
+  if (!settings.pipelineOut.empty()) runPipeline(settings);
   return 0;
 }

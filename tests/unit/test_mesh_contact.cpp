@@ -214,6 +214,33 @@ TEST(MeshContact, ContactsMoveWithARigidMotionOfTheScene) {
   EXPECT_GT(exactStats.trianglePairsPruned, exactStats.trianglePairsChecked);
 }
 
+TEST(MeshContact, OnlyLocalMinimaOfTheSurfaceDistanceCount) {
+  // A cube corner resting next to the interior diagonal (x = y) of a flat floor face: the
+  // pairs with the floor triangle across the diagonal have slanted edge-edge closest points.
+  const RigidShape cube = unitCube();
+  const RigidShape floorShape = RigidShape::fromMesh(geometry::boxMesh(Vector3d(10, 10, 1)));
+  const Quaterniond q = Quaterniond::FromTwoVectors(Vector3d(-1, -1, -1).normalized(), -Vector3d::UnitZ());
+  const Pose floor{Vector3d(0, 0, -0.5), Quaterniond::Identity()};
+  const Pose grain{Vector3d(0.01, 0.005, std::sqrt(3.0) / 2 + kEps), q};
+  MeshContactOptions options = optionsFor(TriangleDistanceMethod::Exact);
+  options.deduplicate = false;
+  std::vector<ContactPoint> filtered, all;
+  MeshContactStatistics stats;
+  MeshContactFinder(options).find(cube, grain, floorShape, floor, filtered, &stats);
+  ASSERT_GE(filtered.size(), 3u);
+  EXPECT_GT(stats.nonMinimumContacts, 0u);
+  for (const ContactPoint& c : filtered) {
+    EXPECT_LT((c.normal + Vector3d::UnitZ()).norm(), 1e-9);
+    EXPECT_NEAR(c.penetration, kEps / 2, 1e-9);
+  }
+  options.localMinimaOnly = false;
+  MeshContactFinder(options).find(cube, grain, floorShape, floor, all);
+  EXPECT_EQ(all.size(), filtered.size() + stats.nonMinimumContacts);
+  double largestTilt = 0.0;
+  for (const ContactPoint& c : all) largestTilt = std::max(largestTilt, std::hypot(c.normal.x(), c.normal.y()));
+  EXPECT_GT(largestTilt, 1e-3);
+}
+
 TEST(MeshContact, MethodNamesParse) {
   EXPECT_EQ(parseTriangleDistanceMethod("exact"), TriangleDistanceMethod::Exact);
   EXPECT_EQ(parseTriangleDistanceMethod("penalty"), TriangleDistanceMethod::Penalty);

@@ -36,6 +36,7 @@ MeshContactStatistics& MeshContactStatistics::operator+=(const MeshContactStatis
   trianglePairsChecked += o.trianglePairsChecked;
   fallbacks += o.fallbacks;
   rawContacts += o.rawContacts;
+  nonMinimumContacts += o.nonMinimumContacts;
   contacts += o.contacts;
   return *this;
 }
@@ -88,6 +89,43 @@ Vector3d touchingNormal(const geometry::TriangleDistanceResult& r, const Triangl
     if (isInsideFace(r.pointOnFirst, first, tolerance)) return firstNormal;
   }
   return firstNormal - secondNormal;
+}
+
+double distanceToSegment(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
+  const Vector3d e = b - a;
+  const double ee = e.squaredNorm();
+  const double s = ee > 0.0 ? std::clamp((p - a).dot(e) / ee, 0.0, 1.0) : 0.0;
+  return (p - (a + s * e)).norm();
+}
+
+// Whether moving the closest point p of triangle t of `shape` onto a neighbouring triangle can
+// shorten the distance along direction u (unit, from p towards the other body): if p lies on
+// an edge (vertex) of t and some neighbour vertex w across that edge (around that vertex) has
+// u . (w - p) > kFeatureTolerance |w - p|, the pair's closest points are not a local minimum of
+// the surface distance, and a neighbouring triangle pair is strictly closer. The points of the
+// shape are mapped by x -> rotation * x + shift.
+bool isLocalMinimum(const geometry::RigidShape& shape, int t, const Vector3d& p, const Vector3d& u,
+                    const Matrix3d& rotation, const Vector3d& shift, double tolerance) {
+  const auto& f = shape.bodyMesh.triangles[std::size_t(t)];
+  const auto world = [&](int v) { return Vector3d(rotation * shape.bodyMesh.vertices[std::size_t(v)] + shift); };
+  const auto descends = [&](int w) {
+    const Vector3d step = world(w) - p;
+    return u.dot(step) > kFeatureTolerance * step.norm();
+  };
+  const Vector3d corner[3] = {world(f[0]), world(f[1]), world(f[2])};
+  for (int k = 0; k < 3; ++k)
+    if ((p - corner[k]).norm() <= tolerance) {
+      for (int n = shape.vertexNeighbourOffsets[std::size_t(f[k])];
+           n < shape.vertexNeighbourOffsets[std::size_t(f[k]) + 1]; ++n)
+        if (descends(shape.vertexNeighbours[std::size_t(n)])) return false;
+      return true;
+    }
+  for (int k = 0; k < 3; ++k)
+    if (distanceToSegment(p, corner[k], corner[(k + 1) % 3]) <= tolerance) {
+      const int apex = shape.edgeApex[std::size_t(t)][k];
+      return apex < 0 || !descends(apex);
+    }
+  return true;  // inside the face: u is its normal
 }
 
 }  // namespace
@@ -201,6 +239,17 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
     c.secondTriangle = nearSecond_[std::size_t(pairIndex_[p][1])];
     const double h = std::max(pairFirst_[p].longestEdge(), pairSecond_[p].longestEdge());
     Vector3d direction = r.pointOnSecond - r.pointOnFirst;
+    if (r.distance > kDirectionTolerance * h && options_.localMinimaOnly) {
+      const Vector3d u = direction / r.distance;
+      const double tolerance = kDirectionTolerance * h;
+      if (!isLocalMinimum(first, c.firstTriangle, r.pointOnFirst, u, Matrix3d::Identity(),
+                          Vector3d::Zero(), tolerance) ||
+          !isLocalMinimum(second, c.secondTriangle, r.pointOnSecond, -u, rotation, shift,
+                          tolerance)) {
+        ++counts.nonMinimumContacts;
+        continue;
+      }
+    }
     if (!(r.distance > kDirectionTolerance * h)) {
       direction = touchingNormal(r, pairFirst_[p], pairSecond_[p], kDirectionTolerance * h);
       if (!(direction.squaredNorm() > 1e-12)) direction = shift;
@@ -211,11 +260,13 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
   }
   counts.rawContacts = raw_.size();
 
-  // De-duplication: running means of close contacts with close normals.
+  // De-duplication: penetration-weighted running means of close contacts with close normals.
   const std::size_t begin = contacts.size();
   const double mergeDistance = std::min(first.minimumEdgeLength, second.minimumEdgeLength);
-  std::vector<Vector3d>& normalSums = normalSums_;  // sums of merged unit normals
+  std::vector<Vector3d>& normalSums = normalSums_;  // weighted sums of merged unit normals
+  std::vector<double>& weights = weights_;          // sums of merged penetrations
   normalSums.clear();
+  weights.clear();
   for (const ContactPoint& c : raw_) {
     bool merged = false;
     if (options_.deduplicate)
@@ -223,13 +274,17 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
         ContactPoint& m = contacts[k];
         if ((c.point - m.point).squaredNorm() < mergeDistance * mergeDistance &&
             c.normal.dot(m.normal) >= options_.mergeNormalCosine) {
-          const double n = double(m.mergedCount);
-          m.point = (n * m.point + c.point) / (n + 1.0);
-          m.distance = (n * m.distance + c.distance) / (n + 1.0);
-          m.penetration = eps - 0.5 * m.distance;
+          double& w = weights[k - begin];
+          const double wc = c.penetration;  // > 0 for every contact (d < 2 eps)
+          const double total = w + wc;
+          const double old = total > 0.0 ? w / total : 0.5, added = 1.0 - old;
+          m.point = old * m.point + added * c.point;
+          m.penetration = old * m.penetration + added * c.penetration;
+          m.distance = 2.0 * (eps - m.penetration);
           Vector3d& sum = normalSums[k - begin];
-          sum += c.normal;
+          sum += wc * c.normal;
           if (sum.squaredNorm() > 0.0) m.normal = sum.normalized();
+          w = total;
           ++m.mergedCount;
           merged = true;
           break;
@@ -237,7 +292,8 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
       }
     if (!merged) {
       contacts.push_back(c);
-      normalSums.push_back(c.normal);
+      normalSums.push_back(c.penetration * c.normal);
+      weights.push_back(c.penetration);
     }
   }
   // To the world frame.

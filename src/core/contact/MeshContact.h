@@ -28,11 +28,22 @@
 // surviving triangle pairs go to the chosen distance method in one batch (Exact:
 // triangleDistance; Penalty: the batched penalty-Newton kernel, uncertified; Hybrid: penalty
 // with certified fallback, contact decisions identical to Exact's); (5) contacts (d < 2 eps);
-// (6) de-duplication (paper §3, step 2): a contact is averaged into an earlier one (point,
-// normal, distance; running means) when its point is closer than the smaller of the two
-// particles' minimum edge lengths to that contact's mean point and the normals' cosine is at
-// least mergeNormalCosine. Typical duplicates: a vertex touching a face is found once per
-// triangle around the vertex.
+// (5b) local-minimum filter: a triangle-pair contact whose closest point lies on an edge or a
+// vertex of its triangle is dropped when a neighbouring triangle across that edge (around that
+// vertex) descends towards the other body (u . (w - p) > kFeatureTolerance |w - p|, u the unit
+// direction to the other body, w the neighbour's vertex): such a pair is not a local minimum
+// of the surface distance, a neighbouring pair is strictly closer and yields the true contact
+// (so nothing is lost). It removes, e.g., the slanted edge-edge contacts of a flat face's
+// interior diagonal, which would push a particle resting on a floor sideways;
+// (6) de-duplication (paper §3, step 2): a contact is averaged into an earlier one when its
+// point is closer than the smaller of the two particles' minimum edge lengths to that
+// contact's mean point and the normals' cosine is at least mergeNormalCosine. Typical
+// duplicates: a vertex touching a face is found once per triangle around the vertex. The
+// average (point, unit normal, penetration) is weighted by the penetrations, not plain as in
+// the paper: a triangle pair that just enters the 2 eps band has weight 0, so the merged force
+// changes continuously. This matters for spurious neighbours such as the interior diagonal
+// edge of a flat floor face, whose edge-edge contact is slanted: with plain averaging it would
+// tilt the merged normal by up to degrees and push a resting particle sideways.
 // Work is done in the first body's frame (only the second body's triangles near the first
 // are transformed); contacts are returned in the world frame.
 #pragma once
@@ -66,12 +77,15 @@ struct Pose {
 
 // Below this times the longest edge, a triangle distance counts as touching for the normal.
 constexpr double kDirectionTolerance = 1e-9;
+// Slope (sine) above which a neighbour triangle is taken to descend towards the other body.
+constexpr double kFeatureTolerance = 1e-7;
 
 struct MeshContactOptions {
   double epsilon = 0.0;  // halo depth; contact when the triangle distance < 2 epsilon
   TriangleDistanceMethod method = TriangleDistanceMethod::Hybrid;
   int newtonIterations = 8;        // penalty and hybrid (4 or 8 in the paper)
   bool deduplicate = true;
+  bool localMinimaOnly = true;     // drop contacts that are not local distance minima (5b)
   double mergeNormalCosine = 0.9;  // "reasonably close normals": within about 25 degrees
   // Optional hook after the bounding-sphere check: gets both poses and the gap between the
   // bounding spheres (centre distance - radii, may be negative); return false to skip the pair.
@@ -95,7 +109,8 @@ struct MeshContactStatistics {
   std::size_t trianglePairsPruned = 0;   // rejected by triangle bounding spheres
   std::size_t trianglePairsChecked = 0;  // given to the distance method
   std::size_t fallbacks = 0;             // hybrid: pairs that fell back to the exact method
-  std::size_t rawContacts = 0;           // triangle pairs closer than 2 epsilon
+  std::size_t nonMinimumContacts = 0;    // dropped by the local-minimum filter (5b)
+  std::size_t rawContacts = 0;           // contacts before de-duplication
   std::size_t contacts = 0;              // after de-duplication
 
   MeshContactStatistics& operator+=(const MeshContactStatistics& o);
@@ -124,6 +139,7 @@ class MeshContactFinder {
   std::vector<geometry::TriangleDistanceResult> results_;
   std::vector<ContactPoint> raw_;
   std::vector<Eigen::Vector3d> normalSums_;
+  std::vector<double> weights_;
 };
 
 // Whether the bounding spheres come within 2 epsilon (the first precheck).

@@ -13,6 +13,8 @@ void hybridDistancesOf(const PairSource& pairs, const HybridOptions& options,
   const std::size_t count = pairs.count();
   PenaltyOptions penaltyOptions;
   penaltyOptions.newtonIterations = options.newtonIterations;
+  penaltyOptions.tightGap = options.relativeTolerance;
+  penaltyOptions.tightGapPerLength = options.lengthScaleTolerance;
   const double threshold = options.contactDistance;
   HybridStatistics counts;
   counts.pairs = count;

@@ -189,13 +189,12 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
       const double h34 = g34[l] + pv;
       const double h13 = g13[l], h14 = g14[l], h23 = g23[l], h24 = g24[l];
       // H dz = r by 2x2 blocks (u, v), written with adjugates so that the step's dependency
-      // chain holds two divisions instead of the four of an LDL^T solve (the kernel is
-      // latency-bound: one batch is one or two registers):
+      // chain holds one division instead of the four of an LDL^T solve (the kernel is
+      // latency-bound: one batch is two or four registers):
       //   S = det(Huu) Hvv - Huv^T adj(Huu) Huv   (det(Huu) times the Schur complement),
       //   dz_v = adj(S) (det(Huu) r_v - Huv^T adj(Huu) r_u) / det(S),
       //   dz_u = adj(Huu) (r_u - Huv dz_v) / det(Huu).
       const double detUU = h11 * h22 - h12 * h12;
-      const double inverseDetUU = 1.0 / detUU;
       const double m11 = h22 * h13 - h12 * h23, m12 = h22 * h14 - h12 * h24;
       const double m21 = h11 * h23 - h12 * h13, m22 = h11 * h24 - h12 * h14;
       const double s33 = detUU * h33 - (h13 * m11 + h23 * m21);
@@ -204,7 +203,13 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
       const double ar1 = h22 * r1 - h12 * r2, ar2 = h11 * r2 - h12 * r1;
       const double rs3 = detUU * r3 - (h13 * ar1 + h23 * ar2);
       const double rs4 = detUU * r4 - (h14 * ar1 + h24 * ar2);
-      const double inverseDetS = 1.0 / (s33 * s44 - s34 * s34);
+      // One division for both determinants (a division costs as much as a dozen FMAs and
+      // sits on the step's dependency chain); the product stays far inside double range
+      // (entries are O(rho) <= 1e12 in edge-length units: |detUU * detS| < 1e100).
+      const double detS = s33 * s44 - s34 * s34;
+      const double inverseProduct = 1.0 / (detUU * detS);
+      const double inverseDetS = detUU * inverseProduct;
+      const double inverseDetUU = detS * inverseProduct;
       const double dz3 = (s44 * rs3 - s34 * rs4) * inverseDetS;
       const double dz4 = (s33 * rs4 - s34 * rs3) * inverseDetS;
       const double t1 = r1 - h13 * dz3 - h14 * dz4, t2 = r2 - h23 * dz3 - h24 * dz4;
@@ -218,7 +223,20 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
   }
 
   // Not `omp simd` here: it would privatise the small structs of the loop body into per-lane
-  // arrays and then fail on the scattered stores; the plain loop vectorises (-O2 and -O3).
+  // arrays and then fail on the scattered stores; the plain loops vectorise (-O2 and -O3).
+  //
+  // Separating-axis lower bounds (separationAlong). The direction of the two points, w, is
+  // exact at the minimiser, but for nearly touching pairs it is only as accurate as
+  // eps h / |w|, and so is its bound (error ~ eps h^2 / d). The contact features give
+  // directions that do not degrade: the face normals (vertex-face contact) and the cross
+  // product of the two edges the points lie on (edge-edge contact; the edge of a triangle is
+  // the one whose barycentric constraint has the smallest slack). Every bound is rigorous for
+  // its own direction, so the largest is taken. The w bound comes first; only when it leaves
+  // a gap above options.tightGap (relative) + options.tightGapPerLength * h in some lane of
+  // the batch are the three feature bounds computed (for every lane): pairs farther apart
+  // than ~1e-3 h - most of a particle pair's - are certified by the w bound alone.
+  const double tightGap = options.tightGap, tightGapPerLength = options.tightGapPerLength;
+  int uncertain = 0;
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC ivdep
 #endif
@@ -232,6 +250,10 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
     z2 *= shrinkU;
     z3 *= shrinkV;
     z4 *= shrinkV;
+    u1[l] = z1;
+    u2[l] = z2;
+    v1[l] = z3;
+    v2[l] = z4;
     const LocalPair pair{{a1[0][l], a1[1][l], a1[2][l]}, {a2[0][l], a2[1][l], a2[2][l]},
                          {b0[0][l], b0[1][l], b0[2][l]}, {b1[0][l], b1[1][l], b1[2][l]},
                          {b2[0][l], b2[1][l], b2[2][l]}};
@@ -239,34 +261,39 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
     const Vec3 y = pair.b0 + pair.b1 * z3 + pair.b2 * z4;
     const Vec3 w = x - y;
     const double distance = std::sqrt(dot(w, w));
-
-    // Separating-axis lower bounds (separationAlong). The direction of the two points, w, is
-    // exact at the minimiser, but for nearly touching pairs it is only as accurate as
-    // eps h / |w|, and so is its bound (error ~ eps h^2 / d). The contact features give
-    // directions that do not degrade: the face normals (vertex-face contact) and the cross
-    // product of the two edges the points lie on (edge-edge contact; the edge of a triangle is
-    // the one whose barycentric constraint has the smallest slack). Every bound is rigorous
-    // for its own direction, so the largest is taken.
-    const Vec3 edgeA = contactEdge(z1, z2, pair.a1, pair.a2);
-    const Vec3 edgeB = contactEdge(z3, z4, pair.b1, pair.b2);
-    const double lowerBound =
-        larger(larger(separationAlong(w, pair), separationAlong(cross(edgeA, edgeB), pair)),
-               larger(separationAlong(cross(pair.a1, pair.a2), pair),
-                      separationAlong(cross(pair.b1, pair.b2), pair)));
-    result.distance[l] = distance;
-    result.lowerBound[l] = larger(lowerBound, 0.0);
-
+    const double lowerBound = larger(separationAlong(w, pair), 0.0);
     const double longestSquared =
         larger(larger(larger(dot(pair.a1, pair.a1), dot(pair.a2, pair.a2)),
                       larger(dot(pair.a2 - pair.a1, pair.a2 - pair.a1), dot(pair.b1, pair.b1))),
                larger(dot(pair.b2, pair.b2), dot(pair.b2 - pair.b1, pair.b2 - pair.b1)));
-    result.lengthScale[l] = std::sqrt(longestSquared);
+    const double longest = std::sqrt(longestSquared);
+    // Written so that a NaN counts as uncertain.
+    uncertain |= !(distance - lowerBound <= tightGap * distance + tightGapPerLength * longest);
+    result.distance[l] = distance;
+    result.lowerBound[l] = lowerBound;
+    result.lengthScale[l] = longest;
     result.pointOnFirst[0][l] = P[0][0][0][l] + x.x;
     result.pointOnFirst[1][l] = P[0][0][1][l] + x.y;
     result.pointOnFirst[2][l] = P[0][0][2][l] + x.z;
     result.pointOnSecond[0][l] = P[0][0][0][l] + y.x;
     result.pointOnSecond[1][l] = P[0][0][1][l] + y.y;
     result.pointOnSecond[2][l] = P[0][0][2][l] + y.z;
+  }
+  if (!uncertain) return;
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC ivdep
+#endif
+  for (int l = 0; l < kLanes; ++l) {
+    const LocalPair pair{{a1[0][l], a1[1][l], a1[2][l]}, {a2[0][l], a2[1][l], a2[2][l]},
+                         {b0[0][l], b0[1][l], b0[2][l]}, {b1[0][l], b1[1][l], b1[2][l]},
+                         {b2[0][l], b2[1][l], b2[2][l]}};
+    const Vec3 edgeA = contactEdge(u1[l], u2[l], pair.a1, pair.a2);
+    const Vec3 edgeB = contactEdge(v1[l], v2[l], pair.b1, pair.b2);
+    const double featureBound =
+        larger(separationAlong(cross(edgeA, edgeB), pair),
+               larger(separationAlong(cross(pair.a1, pair.a2), pair),
+                      separationAlong(cross(pair.b1, pair.b2), pair)));
+    result.lowerBound[l] = larger(result.lowerBound[l], featureBound);
   }
 }
 

@@ -27,6 +27,13 @@ constexpr int kMaxNewtonIterations = 32;
 
 struct PenaltyOptions {
   int newtonIterations = 8;  // fixed count in [1, kMaxNewtonIterations]; the paper uses 4 or 8
+  // The cheap separating-axis bound along the points' direction is enough for the batch when
+  // in every lane distance - bound <= tightGap * distance + tightGapPerLength * h; otherwise
+  // three more (feature) bounds are computed for the whole batch. Only the tightness of
+  // lowerBound depends on these (it is rigorous either way); the hybrid passes its acceptance
+  // tolerances so that it gets the feature bounds exactly when the cheap one would fail it.
+  double tightGap = 1e-13;
+  double tightGapPerLength = 0.0;
 };
 
 struct PenaltyBatchResult {

@@ -1,6 +1,8 @@
 #include "geometry/RigidShape.h"
 
 #include <algorithm>
+#include <map>
+#include <utility>
 
 namespace spacetree::geometry {
 
@@ -33,6 +35,29 @@ RigidShape RigidShape::fromMesh(const TriangleMesh& mesh) {
     shape.triangleCentres.push_back(centre);
     shape.triangleRadii.push_back(std::max({(t[0] - centre).norm(), (t[1] - centre).norm(),
                                             (t[2] - centre).norm()}));
+  }
+  // Adjacency: directed edge (a, b) -> apex of its triangle; the neighbour across (a, b) of
+  // a triangle is the triangle with the directed edge (b, a).
+  std::map<std::pair<int, int>, int> apexOfDirectedEdge;
+  const auto& triangles = shape.bodyMesh.triangles;
+  for (const auto& f : triangles)
+    for (int k = 0; k < 3; ++k) apexOfDirectedEdge[{f[k], f[(k + 1) % 3]}] = f[(k + 2) % 3];
+  shape.edgeApex.resize(triangles.size());
+  std::vector<std::vector<int>> neighbours(shape.bodyMesh.vertices.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+      const auto it = apexOfDirectedEdge.find({b, a});
+      shape.edgeApex[t][k] = it == apexOfDirectedEdge.end() ? -1 : it->second;
+      neighbours[a].push_back(b);
+      neighbours[b].push_back(a);
+    }
+  shape.vertexNeighbourOffsets.assign(1, 0);
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    shape.vertexNeighbours.insert(shape.vertexNeighbours.end(), list.begin(), list.end());
+    shape.vertexNeighbourOffsets.push_back(int(shape.vertexNeighbours.size()));
   }
   return shape;
 }

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <array>
 #include <vector>
 
 #include "geometry/MassProperties.h"
@@ -25,6 +26,15 @@ struct RigidShape {
   // triangle-pair pruning of the contact search.
   std::vector<Eigen::Vector3d> triangleCentres;
   std::vector<double> triangleRadii;
+
+  // Adjacency (closed manifold mesh): edgeApex[t][k] is the vertex opposite edge
+  // (v_k, v_{k+1}) of triangle t in the neighbouring triangle across that edge (-1 if none);
+  // the neighbours of vertex v are vertexNeighbours[vertexNeighbourOffsets[v] ..
+  // vertexNeighbourOffsets[v + 1]). Used by the contact search to drop triangle-pair contacts
+  // that are not local minima of the surface distance (MeshContact.h).
+  std::vector<std::array<int, 3>> edgeApex;
+  std::vector<int> vertexNeighbourOffsets;
+  std::vector<int> vertexNeighbours;
 
   double boundingRadius = 0.0;       // max |vertex| (about the centre of mass)
   double minimumEdgeLength = 0.0;    // the contact de-duplication length of the paper (§3)

@@ -7,7 +7,7 @@
 
 namespace spacetree::geometry {
 
-constexpr int kTrianglePairBatchSize = 8;
+constexpr int kTrianglePairBatchSize = 16;
 
 struct TrianglePairBatch {
   // coordinate[t][v][c][lane]: triangle t (0 = first, 1 = second), vertex v, axis c.
