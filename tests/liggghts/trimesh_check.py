@@ -6,7 +6,8 @@ fix nve/trimesh, dump trimesh/vtk, compute trimesh/contacts).
 
 Cases (each prints PASS/FAIL lines; exit status 0 = all passed):
   collide   two cubes corner to corner: restitution = the spring-dashpot value (damping only
-            while approaching) within 2 %, for exact/penalty/hybrid and rotation yes/no
+            while approaching) within 2 %, for exact/penalty/hybrid, rotation yes/no, and under
+            fix adapt/timestep (reset_dt of fix nve/trimesh)
   floor     dented sphere on a fixed floor: comes to rest (kinetic energy < 1e-12 J), the surface
             never sinks more than eps below the floor, contacts stay
   ranks     six spinning particles crossing the rank boundary: 1 and 2 ranks give the same surfaces
@@ -138,9 +139,14 @@ def case_collide(a):
     S, D, v0 = 5e5, 150.0, 0.5
     e_ref, zeta = restitution_analytic(S, D)
     print("analytic restitution e = %.6f (zeta = %.4f)" % (e_ref, zeta))
-    for method, rot in (("exact", "no"), ("hybrid", "yes"), ("penalty", "yes")):
-        rc, out, log = run(a, "trimesh_collide.in", wd, "collide_%s_%s" % (method, rot),
-                           dict(method=method, rot=rot, S=S, D=D, v0=v0, n=2500))
+    adapt = "fix ad all adapt/timestep creep 1.1 dtmax 2e-6"
+    for method, rot, extra in (("exact", "no", None), ("hybrid", "yes", None), ("penalty", "yes", None),
+                               ("hybrid", "yes", adapt)):
+        vars_ = dict(method=method, rot=rot, S=S, D=D, v0=v0, n=2500)
+        if extra:
+            vars_["adapt"] = extra
+            rot += " + fix adapt/timestep"
+        rc, out, log = run(a, "trimesh_collide.in", wd, "collide_%s_%s" % (method, "adapt" if extra else rot), vars_)
         check(rc == 0, "collide %s rotation %s runs" % (method, rot))
         if rc != 0:
             continue
@@ -154,6 +160,15 @@ def case_collide(a):
               % (method, ncont.max()))
         check(0 < pen.max() < 1e-4, "collide %s: largest penetration %.3g in (0, eps): surfaces never touch" % (method, pen.max()))
         check(ncont[-1] == 0, "collide %s: cubes separated at the end" % method)
+        if extra:
+            dt = t[:, 5]
+            check(dt.min() < 0.5e-6 and dt[-1] == 2e-6,
+                  "collide with fix adapt/timestep: dt cut at impact (min %.3g s), back to 2e-6 s" % dt.min())
+            # the integrator follows the changing step: separation speed = d(sep)/d(time)
+            time_, sep = t[:, 6], t[:, 7]
+            speed = (sep[-1] - sep[-10]) / (time_[-1] - time_[-10])
+            check(abs(speed / vrel[-1] - 1) < 1e-6,
+                  "collide with fix adapt/timestep: d(separation)/d(time) %.8g = v_rel %.8g" % (speed, vrel[-1]))
 
 
 def case_floor(a):
