@@ -10,6 +10,7 @@ Cases (each prints PASS/FAIL lines; exit status 0 = all passed):
             fix adapt/timestep (reset_dt of fix nve/trimesh)
   floor     dented sphere on a fixed floor: comes to rest (kinetic energy < 1e-12 J), the surface
             never sinks more than eps below the floor, contacts stay
+  edge      a tilted cube dropped on its edge turns the right way and ends flat on a face
   ranks     six spinning particles crossing the rank boundary: 1 and 2 ranks give the same surfaces
   restart   write_restart / read_restart half way = one uninterrupted run
   bad       bad input stops with a clear ERROR
@@ -176,7 +177,7 @@ def case_floor(a):
     write_stl(os.path.join(wd, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
     n = 60000
     rc, out, log = run(a, "trimesh_floor.in", wd, "floor",
-                       dict(n=n, method="hybrid", ntri=40, amp=0.3, S=2e4, D=100, gamma=5))
+                       dict(n=n, method="hybrid", S=2e4, D=100, gamma=5))
     check(rc == 0, "floor runs")
     if rc != 0:
         return
@@ -195,6 +196,40 @@ def case_floor(a):
     floor = np.unique(cells[ids == 2])
     check(abs(pts[floor, 2].max()) < 1e-12 and abs(pts[floor, 0].min() + 0.025) < 1e-12,
           "floor: obstacle stays where the file puts it")
+
+
+def case_edge(a):
+    """A cube tilted by 30 degrees about y, dropped onto its lowest edge (at x > 0 of its centre):
+    the floor's push at that edge must turn it with omega_y < 0 (towards lying flat), and it
+    must come to rest on a face (its vertices at two heights, 0 + halo and the edge length)."""
+    wd = a.workdir
+    write_stl(os.path.join(wd, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
+    h, th = 0.005, math.radians(30)
+    c, s_ = math.cos(th), math.sin(th)
+    ry = np.array([[c, 0, s_], [0, 1, 0], [-s_, 0, c]])
+    write_stl(os.path.join(wd, "cube_tilt.stl"), box_triangles((-h, -h, -h), (h, h, h)) @ ry.T)
+    z0 = h * (s_ + c) + 0.0003
+    n = 60000
+    rc, out, log = run(a, "trimesh_floor.in", wd, "edge",
+                       dict(n=n, method="hybrid", S=2e4, D=100, gamma=5, grain="file cube_tilt.stl",
+                            z0=z0, th=100))
+    check(rc == 0, "edge: cube dropped on its edge runs")
+    if rc != 0:
+        return
+    t = thermo(log)
+    ncont, wy = t[:, 2], t[:, 5]
+    first = int(np.argmax(ncont > 0))
+    check(ncont.max() > 0, "edge: the edge hits the floor at step %d" % t[first, 0])
+    after = wy[first + 1:first + 20]
+    check(after.size > 0 and after[np.argmax(np.abs(after))] < 0,
+          "edge: it starts rotating with omega_y < 0 (largest |omega_y| after impact %.4g rad/s)"
+          % after[np.argmax(np.abs(after))])
+    pts, cells, ids = read_vtk(os.path.join(wd, "floor_%d.vtk" % n))
+    z = np.sort(pts[np.unique(cells[ids == 1]), 2])
+    check(abs(z[:4].max() - z[:4].min()) < 1e-5 and abs(z[4:].min() - z[:4].max() - 2 * h) < 1e-5 and
+          0 < z[0] < 2e-4,
+          "edge: the cube ends flat on a face (vertex heights %.3g..%.3g and %.5g..%.5g m)"
+          % (z[0], z[3], z[4], z[7]))
 
 
 def case_ranks(a):
@@ -299,7 +334,7 @@ def case_hopper(a):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("case", choices=["collide", "floor", "ranks", "restart", "bad", "hopper"])
+    ap.add_argument("case", choices=["collide", "floor", "edge", "ranks", "restart", "bad", "hopper"])
     ap.add_argument("--exe", required=True)
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--mpiexec", default="mpirun")
