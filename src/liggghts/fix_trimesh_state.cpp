@@ -25,6 +25,10 @@ FixTrimeshState::FixTrimeshState(LAMMPS *lmp, int narg, char **arg) :
   atom->add_callback(1);   // restart
   atom->add_callback(2);   // border
   for (int i = 0; i < atom->nmax; i++) set_arrays(i);
+  // Modify::setup() would call set_arrays() on every atom of a "just created" fix at the end
+  // of the first setup, after fix trimesh/template has set the orientations: the arrays are
+  // initialised here instead
+  just_created = 0;
 }
 
 FixTrimeshState::~FixTrimeshState()
@@ -92,7 +96,7 @@ int FixTrimeshState::pack_comm(int n, int *list, double *buf, int, int *)
   int m = 0;
   for (int ii = 0; ii < n; ii++)
     for (int k = 0; k < 4; k++) buf[m++] = quat[list[ii]][k];
-  return m;
+  return 4;   // Comm::forward_comm_fix wants the count per atom
 }
 
 void FixTrimeshState::unpack_comm(int n, int first, double *buf)

@@ -138,7 +138,9 @@ void FixTrimeshTemplate::post_create()
 
 int FixTrimeshTemplate::setmask()
 {
-  return 0;
+  // PRE_EXCHANGE for setup_pre_exchange() (poses of new atoms before the ghosts are made);
+  // pre_exchange() itself does nothing
+  return FixConst::PRE_EXCHANGE;
 }
 
 void FixTrimeshTemplate::init()
