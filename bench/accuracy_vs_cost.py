@@ -69,29 +69,39 @@ def two_spheres(runner, rows):
     tc, peak = h["contact_time"], lg.peak_overlap(h, 2 * v0)
     h1 = lg.hooke(5e6, 0.45, d / 2, d / 2, m, m, 0.999999999, 2.0)
     tc1 = math.pi / math.sqrt(h1["kn"] / h1["m_eff"])
-    tend = gap0 / (2 * v0) + 3 * tc
+    gaps = [gap0 + k * 1.37e-4 for k in range(5)]
+    tend = gaps[-1] / (2 * v0) + 3 * tc
     eps = 1.5 * peak
     ks = [5, 10, 20, 50, 100, 200]
-    best = tc / ks[-1]
     policies = [("fixed tc/%d" % k, tc / k, fixed_line(tc / k)) for k in ks]
-    policies += [("adaptive", tc / 1000, adaptive_line(best, eps, False)),
-                 ("adaptive+rollback", tc / 1000, adaptive_line(best, eps, True))]
+    policies += [("adaptive dtcontact tc/%d" % k, tc / 1000, adaptive_line(tc / k, eps, False)) for k in (100, 200, 400)]
+    policies += [("adaptive dtcontact tc/400 + rollback", tc / 1000, adaptive_line(tc / 400, eps, True))]
     for label, dt0, line in policies:
-        log, wall = runner.run(deck, "ts_" + label.replace(" ", "_").replace("/", ""),
-                               dict(e=0.5, gap0=gap0, tend=tend, dt0=dt0, adapt=line))
-        r = last_row(log)
-        e_meas = r["vrel"] / (2 * v0)
-        log1, _ = runner.run(deck, "ts1_" + label.replace(" ", "_").replace("/", ""),
-                             dict(e=1.0, gap0=gap0, tend=tend, dt0=dt0, adapt=line))
-        r1 = last_row(log1)
-        ke0 = m * v0 ** 2
-        rows.append(dict(case="two_spheres", policy=label, steps=int(r["Step"]), sim_time=r["Time"],
-                         wall_s=wall, restitution_error=abs(e_meas - 0.5) / 0.5,
-                         peak_overlap=r["dtv[8]"], peak_overlap_error=abs(r["dtv[8]"] - peak) / peak,
-                         eps=eps, energy_error=abs(r1["KinEng"] / ke0 - 1.0)))
-        print("two_spheres %-18s steps %7d wall %.3f s  e err %.2e  peak err %.2e  energy err %.2e"
-              % (label, rows[-1]["steps"], wall, rows[-1]["restitution_error"],
-                 rows[-1]["peak_overlap_error"], rows[-1]["energy_error"]))
+        tag = label.replace(" ", "_").replace("/", "").replace("+", "_")
+        per_phase = []
+        # the entry and exit of a contact fall at a random phase of the step: every policy runs
+        # from several separations and the median over them is reported
+        for k, gap in enumerate(gaps):
+            log, wall = runner.run(deck, "ts_%s_%d" % (tag, k),
+                                   dict(e=0.5, gap0=gap, tend=tend, dt0=dt0, adapt=line))
+            r = last_row(log)
+            log1, _ = runner.run(deck, "ts1_%s_%d" % (tag, k),
+                                 dict(e=1.0, gap0=gap, tend=tend, dt0=dt0, adapt=line))
+            r1 = last_row(log1)
+            per_phase.append(dict(steps=r["Step"], sim_time=r["Time"], wall_s=wall,
+                                  restitution_error=abs(r["vrel"] / (2 * v0) - 0.5) / 0.5,
+                                  peak_overlap=r["dtv[8]"], peak_overlap_error=abs(r["dtv[8]"] - peak) / peak,
+                                  energy_error=abs(r1["KinEng"] / (m * v0 ** 2) - 1.0)))
+        row = dict(case="two_spheres", policy=label, eps=eps)
+        for key in per_phase[0]:
+            row[key] = statistics.median(p[key] for p in per_phase)
+        row["steps"] = int(row["steps"])
+        row["energy_error_max"] = max(p["energy_error"] for p in per_phase)
+        row["restitution_error_max"] = max(p["restitution_error"] for p in per_phase)
+        rows.append(row)
+        print("two_spheres %-36s steps %7d wall %.4f s  e err %.2e  peak err %.2e  energy err %.2e (max %.2e)"
+              % (label, row["steps"], row["wall_s"], row["restitution_error"], row["peak_overlap_error"],
+                 row["energy_error"], row["energy_error_max"]))
     return dict(tc=tc, peak=peak, tend=tend, eps=eps, tc_elastic=tc1)
 
 
@@ -145,10 +155,9 @@ def pour(runner, rows):
     tc = min(tcs)
     tend, eps = 0.12, 5e-4
     ks = [5, 10, 20, 50, 100]
-    best = tc / ks[-1]
     policies = [("fixed tc/%d" % k, tc / k, fixed_line(tc / k)) for k in ks]
-    policies += [("adaptive", tc / 1000, adaptive_line(best, eps, False)),
-                 ("adaptive+rollback", tc / 1000, adaptive_line(best, eps, True))]
+    policies += [("adaptive dtcontact tc/%d" % k, tc / 1000, adaptive_line(tc / k, eps, False)) for k in (50, 100, 200)]
+    policies += [("adaptive dtcontact tc/100 + rollback", tc / 1000, adaptive_line(tc / 100, eps, True))]
     for label, dt0, line in policies:
         tag = "pour_" + label.replace(" ", "_").replace("/", "").replace("+", "_")
         init, final = os.path.join(runner.work, tag + ".initial"), os.path.join(runner.work, tag + ".final")
@@ -158,7 +167,7 @@ def pour(runner, rows):
         rows.append(dict(case="pour", policy=label, steps=int(r["Step"]), sim_time=r["Time"], wall_s=wall,
                          restitution_error=float("nan"), peak_overlap=r["dtv[8]"],
                          peak_overlap_error=float("nan"), eps=eps, energy_error=abs(e1 - e0) / e0))
-        print("pour        %-18s steps %7d wall %.3f s  peak overlap %.3e  energy err %.2e"
+        print("pour        %-36s steps %7d wall %.3f s  peak overlap %.3e  energy err %.2e"
               % (label, rows[-1]["steps"], wall, rows[-1]["peak_overlap"], rows[-1]["energy_error"]))
     return dict(tc=tc, tend=tend, eps=eps)
 
@@ -166,6 +175,8 @@ def pour(runner, rows):
 def verdict(rows, case, metrics):
     sub = [r for r in rows if r["case"] == case]
     fixed = [r for r in sub if r["policy"].startswith("fixed")]
+    if not fixed:
+        return []
     best = min(fixed, key=lambda r: sum(r[m] for m in metrics))  # the most accurate fixed step
     out = []
     for r in sub:
@@ -190,19 +201,20 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "liggghts-spacetree"))
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--skip-pour", action="store_true", help="two-sphere case only (quick look)")
     ap.add_argument("--docs", default=os.path.join(ROOT, "docs"))
     a = ap.parse_args()
     work = os.path.join(ROOT, "build", "bench_accuracy_vs_cost")
     runner = Runner(a.exe, work, a.repeats)
     rows = []
     info_ts = two_spheres(runner, rows)
-    info_pour = pour(runner, rows)
+    info_pour = pour(runner, rows) if not a.skip_pour else dict(tc=0, tend=0, eps=0)
 
     os.makedirs(os.path.join(a.docs, "figures"), exist_ok=True)
-    keys = ["case", "policy", "steps", "sim_time", "wall_s", "restitution_error", "peak_overlap",
-            "peak_overlap_error", "eps", "energy_error"]
+    keys = ["case", "policy", "steps", "sim_time", "wall_s", "restitution_error", "restitution_error_max",
+            "peak_overlap", "peak_overlap_error", "eps", "energy_error", "energy_error_max"]
     with open(os.path.join(a.docs, "accuracy_vs_cost.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
+        w = csv.DictWriter(f, fieldnames=keys, restval="")
         w.writeheader()
         for r in rows:
             w.writerow(r)
@@ -222,8 +234,9 @@ def main():
         ax.loglog([r["steps"] for r in fx], [max(r[metric], 1e-16) for r in fx], "o-", label="fixed dt = tc/k")
         for r in fx:
             ax.annotate(r["policy"].split()[1], (r["steps"], max(r[metric], 1e-16)), fontsize=7)
-        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], ("r*", "gs")):
-            ax.loglog([r["steps"]], [max(r[metric], 1e-16)], mk, ms=10, label=r["policy"])
+        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], ("r*", "m*", "k*", "gs")):
+            ax.loglog([r["steps"]], [max(r[metric], 1e-16)], mk, ms=10 if mk != "gs" else 14, mfc="none" if mk == "gs" else None,
+                      label=r["policy"])
         ax.set_xlabel("steps")
         ax.set_ylabel(metric.replace("_", " ") + " (relative)")
         ax.set_title(title)
@@ -236,8 +249,9 @@ def main():
         sub = [r for r in rows if r["case"] == case]
         fx = [r for r in sub if r["policy"].startswith("fixed")]
         ax.loglog([r["wall_s"] for r in fx], [max(r[metric], 1e-16) for r in fx], "o-", label="fixed dt = tc/k")
-        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], ("r*", "gs")):
-            ax.loglog([r["wall_s"]], [max(r[metric], 1e-16)], mk, ms=10, label=r["policy"])
+        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], ("r*", "m*", "k*", "gs")):
+            ax.loglog([r["wall_s"]], [max(r[metric], 1e-16)], mk, ms=10 if mk != "gs" else 14, mfc="none" if mk == "gs" else None,
+                      label=r["policy"])
         ax.set_xlabel("wall time (s, median of %d)" % a.repeats)
         ax.set_ylabel(metric.replace("_", " "))
         ax.set_title(case)
@@ -255,27 +269,28 @@ def main():
           "`fix adapt/timestep` (fixed: `creep 1.0 veto no`, which keeps dt and only reports overlaps), so",
           "the per-step cost of the overlap scan is in every row.",
           "",
-          "Adaptive policy: `creep 1.1 dtmax 1e-3 dtcontact <finest fixed dt> eps <eps>` (veto on); the",
-          "second adaptive row adds `rollback yes penetration 0.9`. Between contacts the step grows to",
-          "the skin cap (skin/2 per step) and `dtmax`; while any pair is in contact or may touch within",
+          "Adaptive policy: `creep 1.1 dtmax 1e-3 dtcontact tc/k eps <eps>` (veto on) for several k; the",
+          "`+ rollback` row adds `rollback yes penetration 0.9`. Between contacts the step grows up to",
+          "the skin and list look-ahead caps and `dtmax`; while any pair is in contact or may touch within",
           "the next step it is at most `dtcontact`.",
           "",
           "## Two spheres head-on (hooke)",
           "",
-          "d = 0.01 m, 2500 kg/m^3, +-1 m/s, 0.05 m apart, run to t = %.4g s; closed form: contact time"
-          % info_ts["tend"],
+          "d = 0.01 m, 2500 kg/m^3, +-1 m/s, 0.05 m apart (five runs, 0.05 + k 1.37e-4 m, k = 0..4: the",
+          "contact starts and ends at a different phase of the step in each; medians, and the worst of the",
+          "five in brackets), run to t = %.4g s; closed form: contact time" % info_ts["tend"],
           "tc = %.4e s, peak overlap %.4e m (e = 0.5); eps = %.3e m. Restitution error: |e - 0.5|/0.5;"
           % (info_ts["tc"], info_ts["peak"], info_ts["eps"]),
           "energy error: |KE after / KE before - 1| of the same run with e = 1; peak-overlap error against",
           "the closed form.",
           "",
-          "| policy | steps | wall (s) | restitution error | peak overlap (m) | peak-overlap error | energy error (e = 1) |",
+          "| policy | steps | wall (s) | restitution error (worst) | peak overlap (m) | peak-overlap error | energy error, e = 1 (worst) |",
           "|---|---|---|---|---|---|---|"]
     for r in rows:
         if r["case"] == "two_spheres":
-            md.append("| %s | %d | %s | %s | %s | %s | %s |" % (r["policy"], r["steps"], fmt(r["wall_s"]),
-                      fmt(r["restitution_error"]), fmt(r["peak_overlap"]), fmt(r["peak_overlap_error"]),
-                      fmt(r["energy_error"])))
+            md.append("| %s | %d | %s | %s (%s) | %s | %s | %s (%s) |" % (r["policy"], r["steps"], fmt(r["wall_s"]),
+                      fmt(r["restitution_error"]), fmt(r["restitution_error_max"]), fmt(r["peak_overlap"]),
+                      fmt(r["peak_overlap_error"]), fmt(r["energy_error"]), fmt(r["energy_error_max"])))
     md += ["",
            "## Polydisperse pour (elastic, frictionless)",
            "",
@@ -303,7 +318,30 @@ def main():
                 case, pol, bestpol, ratio, 1 / ratio, wratio, "yes" if reaches else "no",
                 ", ".join("%s %.2e / %.2e" % (m.replace("_error", ""), x, y) for m, (x, y) in errs.items()),
                 "yes" if reaches and ratio <= 0.2 else "no"))
-    md += ["", "![error vs steps](figures/accuracy_vs_cost_steps.png)", "",
+    met = [(case, pol, ratio) for case, vs in (("two_spheres", v_ts), ("pour", v_pour))
+           for pol, bestpol, ratio, wratio, reaches, errs in vs if reaches and ratio <= 0.2]
+    cheapest = {}
+    for case, vs in (("two_spheres", v_ts), ("pour", v_pour)):
+        ok = [(ratio, pol) for pol, bestpol, ratio, wratio, reaches, errs in vs if reaches]
+        cheapest[case] = min(ok) if ok else None
+    md += ["", "## Reading", "",
+           "* Target met: %s." % ("; ".join("%s with %s at %.3f of the steps" % m for m in met) if met else "nowhere"),
+           "* Cheapest adaptive row that reaches the best fixed accuracy: %s."
+           % "; ".join("%s: %s" % (c, ("%s, steps ratio %.3f" % (v[1], v[0])) if v else "none")
+                       for c, v in cheapest.items()),
+           "* Where the saving comes from: the global step is only large while no pair is in contact",
+           "  or about to touch. The two spheres spend most of the run in free flight (steps at the skin",
+           "  and list look-ahead caps), so the adaptive run can afford a contact resolution finer than",
+           "  the best fixed step and still take far fewer steps. In the pour, once the first spheres",
+           "  land some pair is in contact at nearly every step, the global step sits at `dtcontact`,",
+           "  and only the free fall before the first impact is saved: the ratio stays near the share",
+           "  of contact-free time. A global step cannot do better there; local time stepping could.",
+           "* The fixed-step energy error of the pour is not monotone in dt (tc/10 beats tc/20 and",
+           "  tc/50): the pour is chaotic and each run visits different contacts; the two-sphere medians",
+           "  over five contact phases are the cleaner convergence measure.",
+           "* Rollback never triggered here (no step penetrated beyond 0.9 eps): identical results; its",
+           "  cost is the per-step copy of the state and of the contact history (the wall-ratio difference).",
+           "", "![error vs steps](figures/accuracy_vs_cost_steps.png)", "",
            "![error vs wall time](figures/accuracy_vs_cost_wall.png)", ""]
     with open(os.path.join(a.docs, "accuracy_vs_cost.md"), "w") as f:
         f.write("\n".join(md))

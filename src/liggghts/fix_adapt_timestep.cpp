@@ -152,10 +152,13 @@ void FixAdaptTimestep::init()
   // the deck's timestep is the ceiling, taken once: a later run must not inherit the adapted dt
   if (!dtmax_set && !dtmax_captured) policy.dtMax = update->dt;
   dtmax_captured = true;
-  if (!dtmin_set) policy.dtMin = 1e-3*policy.dtMax;
+  if (!dtmin_set) {
+    policy.dtMin = 1e-3*policy.dtMax;
+    if (policy.dtContact > 0.0) policy.dtMin = std::min(policy.dtMin,1e-2*policy.dtContact);
+  }
   if (policy.dtMin > policy.dtMax)
     error->all(FLERR,"Fix adapt/timestep: dtmin exceeds dtmax");
-  if (policy.dtContact > policy.dtMax)
+  if (policy.dtContact > policy.dtMax && comm->me == 0)
     error->warning(FLERR,"Fix adapt/timestep: dtcontact exceeds dtmax and has no effect");
   if (force->pair == NULL || dynamic_cast<PairGran*>(force->pair) == NULL) {
     if (veto_on || rollback_on || policy.dtContact > 0.0)
@@ -167,7 +170,7 @@ void FixAdaptTimestep::init()
   if (update->whichflag == 1 && strncmp(update->integrate_style,"verlet",6) != 0)
     error->all(FLERR,"Fix adapt/timestep needs run_style verlet");
   // the skin/2 cap only keeps the lists valid when they are rebuilt as soon as they may be stale
-  if (neighbor->every > 1 || neighbor->delay > 0 || !neighbor->dist_check)
+  if ((neighbor->every > 1 || neighbor->delay > 0 || !neighbor->dist_check) && comm->me == 0)
     error->warning(FLERR,"Fix adapt/timestep: with neigh_modify every > 1, delay > 0 or check no the "
                    "skin/2-per-step cap does not keep the neighbour lists valid");
   if (rollback_on) {
@@ -390,8 +393,8 @@ void FixAdaptTimestep::end_of_step()
       if (!restore_state()) {
         rollbacks_failed += 1;
         if (!warned_refused && comm->me == 0)
-          error->warning(FLERR,"Fix adapt/timestep rollback refused: atoms changed rank or number during a "
-                         "re-neighbouring step; step accepted (counted in f_ID[6])");
+          error->warning(FLERR,"Fix adapt/timestep rollback refused: atoms were added or deleted during "
+                         "the step (or no atom map); step accepted (counted in f_ID[6])");
         warned_refused = true;
         break;
       }
@@ -446,32 +449,75 @@ bool FixAdaptTimestep::restore_state()
 {
   const int nlocal = atom->nlocal;
   const bool rebuilt = neighbor->lastcall > saved_step;
-  std::vector<int> where(nsaved,-1);
-  int ok = (nlocal == nsaved && saved_step == update->ntimestep - 1) ? 1 : 0;
-  for (int k = 0; ok && k < nsaved; k++) {
-    int i = -1;
-    if (!rebuilt) i = (atom->tag[k] == s_tag[k]) ? k : -1;
-    else if (atom->map_style) i = atom->map(s_tag[k]);
-    if (i < 0 || i >= nlocal) ok = 0;
-    else where[k] = i;
+  const int R = 17;   // record: tag, image, x, v, omega, f, torque
+  auto record = [&](int k, double *r) {
+    r[0] = s_tag[k];
+    r[1] = s_image[k];
+    for (int d = 0; d < 3; d++) {
+      r[2+d] = s_x[3*k+d];
+      r[5+d] = s_v[3*k+d];
+      r[8+d] = s_omega[3*k+d];
+      r[11+d] = s_f[3*k+d];
+      r[14+d] = s_torque[3*k+d];
+    }
+  };
+  std::vector<double> mine(size_t(R)*nsaved), shipped, received;
+  for (int k = 0; k < nsaved; k++) record(k,&mine[size_t(R)*k]);
+
+  // plan: the record each current local atom takes (nothing is changed before all ranks agree)
+  std::vector<const double*> plan(nlocal,(const double*)NULL);
+  int ok = (saved_step == update->ntimestep - 1) ? 1 : 0;
+  if (ok && !rebuilt) {
+    // no re-neighbouring: same atoms, same order
+    ok = (nlocal == nsaved);
+    for (int k = 0; ok && k < nsaved; k++) {
+      if (atom->tag[k] != s_tag[k]) ok = 0;
+      else plan[k] = &mine[size_t(R)*k];
+    }
+  } else if (ok) {
+    // re-neighboured: atoms sorted and possibly moved to another rank; find them by ID and send
+    // the records of atoms that left to every rank (few: only those that crossed a boundary)
+    if (!atom->map_style) ok = 0;
+    for (int k = 0; ok && k < nsaved; k++) {
+      const int i = atom->map(s_tag[k]);
+      if (i >= 0 && i < nlocal && !plan[i]) plan[i] = &mine[size_t(R)*k];
+      else shipped.insert(shipped.end(),&mine[size_t(R)*k],&mine[size_t(R)*k] + R);
+    }
   }
+  if (rebuilt) {   // collective: every rank takes part, whatever its own verdict
+    int nsend = int(shipped.size()), nprocs = comm->nprocs;
+    std::vector<int> counts(nprocs), offsets(nprocs,0);
+    MPI_Allgather(&nsend,1,MPI_INT,counts.data(),1,MPI_INT,world);
+    for (int p = 1; p < nprocs; p++) offsets[p] = offsets[p-1] + counts[p-1];
+    received.resize(size_t(offsets[nprocs-1] + counts[nprocs-1]));
+    MPI_Allgatherv(shipped.data(),nsend,MPI_DOUBLE,received.data(),counts.data(),offsets.data(),
+                   MPI_DOUBLE,world);
+    for (size_t r = 0; ok && r < received.size(); r += R) {
+      const int i = atom->map(int(received[r]));
+      if (i >= 0 && i < nlocal && !plan[i]) plan[i] = &received[r];
+    }
+    for (int i = 0; ok && i < nlocal; i++) if (!plan[i]) ok = 0;   // an atom without a saved state
+  }
+  int counts_local[2] = {nlocal,nsaved}, counts_all[2];
+  MPI_Allreduce(counts_local,counts_all,2,MPI_INT,MPI_SUM,world);
+  if (counts_all[0] != counts_all[1]) ok = 0;                // atoms were added or deleted
   int all_ok;
   MPI_Allreduce(&ok,&all_ok,1,MPI_INT,MPI_MIN,world);
   if (!all_ok) return false;
 
-  for (int k = 0; k < nsaved; k++) {
-    const int i = where[k];
+  for (int i = 0; i < nlocal; i++) {
+    const double *r = plan[i];
     // a re-neighbouring step may have wrapped the atom through a periodic boundary: keep its
     // current image and shift the saved position into that image
     double unwrapped[3], shift[3], zero[3] = {0.0,0.0,0.0};
-    domain->unmap(&s_x[3*k],s_image[k],unwrapped);
+    domain->unmap(const_cast<double*>(r+2),tagint(r[1]),unwrapped);
     domain->unmap(zero,atom->image[i],shift);
     for (int d = 0; d < 3; d++) {
       atom->x[i][d] = unwrapped[d] - shift[d];
-      atom->v[i][d] = s_v[3*k+d];
-      atom->omega[i][d] = s_omega[3*k+d];
-      atom->f[i][d] = s_f[3*k+d];
-      atom->torque[i][d] = s_torque[3*k+d];
+      atom->v[i][d] = r[5+d];
+      atom->omega[i][d] = r[8+d];
+      atom->f[i][d] = r[11+d];
+      atom->torque[i][d] = r[14+d];
     }
   }
   comm->forward_comm();   // ghosts take the restored positions and velocities

@@ -13,8 +13,11 @@ CASE
   rollback[:NP] veto no, a coarse dtcontact: without rollback the first contact step overlaps
                 deeper than penetration*eps; with rollback yes it does not, rollbacks > 0 are
                 counted, and the restitution is still within 1 %.
-  control       a fixed coarse step (no fix) breaks the 1 % restitution and the eps bound:
-                the checks above can fail.
+  rollback_periodic[:NP] the rollback case across a periodic boundary (atom wrapped and, on 2
+                ranks, handed to another rank in the undone step) equals the non-periodic run.
+  control       a fixed coarse step (no fix) breaks the 1 % restitution bound: the checks
+                above can fail.
+  badinput      wrong keywords stop with an ERROR naming them.
 Exit status 0 = pass, 1 = fail.
 """
 import argparse
@@ -82,14 +85,18 @@ def main():
         print(("PASS " if cond else "FAIL ") + what)
         ok = ok and bool(cond)
 
-    def run(name, e, adapt, n, extra=EXTRA, dt0=1e-5, x0=0.0123, skin=0.002):
+    def run(name, e, adapt, n, extra=EXTRA, dt0=1e-5, x0=0.0123, skin=0.002, check_dist="yes", xs=0.0, bx="f",
+            extrafix="variable nofix equal 0", table=False, nstyle="spacetree"):
         rc, out, log = lg.run_deck(a.exe, DECK, a.workdir, name,
                                    {"e": e, "adapt": adapt, "n": n, "extra": extra, "dt0": dt0,
-                                    "procs": procs, "nstyle": "spacetree", "x0": x0, "skin": skin},
+                                    "procs": procs, "nstyle": nstyle, "x0": x0, "skin": skin, "check": check_dist, "xs": xs, "bx": bx,
+                                    "extrafix": extrafix},
                                    nprocs=nprocs, mpiexec=a.mpiexec)
         if rc != 0:
             print(out[-3000:])
             return None
+        if table:
+            return lg.thermo(log)
         return measure(*lg.thermo(log))
 
     if case == "damped":
@@ -121,6 +128,20 @@ def main():
               "in the contact (min %.3g) and back up to %.3g s afterwards" % (min(r["dt"]), late))
         total = sum(r["dt"][:-1])
         check(abs(total - r["t"][-1]) <= 1e-9 * r["t"][-1], "time %.15g = sum of the steps %.15g" % (r["t"][-1], total))
+        # with `neighbor ... bin` (no mesh cap, the same skin and list caps) the run is the same
+        rb = run("damped_bin", 0.5, adaptive_line(eps, h["contact_time"] / 200, "rollback yes penetration 0.9"), 700,
+                 nstyle="bin")
+        same = rb is not None and len(rb["gap"]) == len(r["gap"]) and \
+            all(abs(a - b) <= 1e-12 for a, b in zip(rb["gap"], r["gap"]))
+        check(same, "neighbor bin gives the same steps and trajectory")
+        # fix check/timestep/gran (defined after this fix) reports dt / Rayleigh time for the dt in use
+        names, rows = run("damped_ctg", 0.5, adaptive_line(eps, h["contact_time"] / 200), 700,
+                          extra="f_ctg[1]", extrafix="fix ctg all check/timestep/gran 1 10 10 warn no",
+                          table=True)
+        ratio = [f / d for f, d in zip(lg.column(names, rows, "f_ctg[1]")[1:], lg.column(names, rows, "Dt")[1:])]
+        spread = (max(ratio) - min(ratio)) / max(ratio)
+        check(spread <= 1e-12 and min(lg.column(names, rows, "Dt")) < 1e-3 / 10,
+              "fix check/timestep/gran sees the adapted dt at every step (f_ctg[1]/dt spread %.1e)" % spread)
     elif case == "elastic":
         h = closed_form(1.0)
         eps = 1.5 * h["peak"]
@@ -155,6 +176,15 @@ def main():
         check(peak1 <= bound, "with rollback yes no step does")
         check(r0["rollbacks"][-1] == 0 and r1["rollbacks"][-1] >= 1, "rollbacks are counted in f_ID[5]")
         check(r1["failed"][-1] == 0, "no rollback refused or exhausted")
+        # the same with a list rebuild in every step: every undone step had re-neighboured (atoms
+        # found by ID, contact history from the snapshot taken after the rebuild)
+        r2 = run("rollback_rebuild", 0.5, base + " rollback yes penetration 0.9", 150, x0=0.0132, skin=0.006,
+                 check_dist="no")
+        check(r2 is not None and r2["rollbacks_rebuilt"][-1] >= 1 and r2["rollbacks"][-1] == r2["rollbacks_rebuilt"][-1],
+              "with a rebuild in every step the undone steps had all re-neighboured (%s)"
+              % (r2 and r2["rollbacks_rebuilt"][-1]))
+        same = r2 is not None and all(abs(a - b) <= 1e-12 * max(1e-3, abs(a)) for a, b in zip(r1["gap"], r2["gap"]))
+        check(same and len(r1["gap"]) == len(r2["gap"]), "and the trajectory equals the one without rebuilds")
         # each step advanced the time by the step it was taken with: the one chosen before it,
         # halved once per rollback of that step
         worst = 0.0
@@ -164,6 +194,30 @@ def main():
             worst = max(worst, abs((r1["t"][k] - r1["t"][k - 1]) - used) / used)
         check(worst <= 1e-9, "time advances by the redone step's dt (worst relative mismatch %.2e)" % worst)
         check(len(r1["crossings"]) >= 1, "the collision happened")
+    elif case == "rollback_periodic":
+        # the rollback case across the periodic boundary x = +-3 with a list rebuild in every step:
+        # the left sphere crosses the boundary in the rejected step (wrapped, and on 2 ranks handed
+        # to the other rank), so the undone step must find it by ID on its new rank and shift its
+        # saved position into the new image. The trajectory must equal the non-periodic one.
+        h = closed_form(0.5)
+        eps = 1.5 * h["peak"]
+        line = ("fix dtv all adapt/timestep creep 1.1 dtmax 1e-3 dtmin 1e-9 eps %.6g veto no rollback yes "
+                "penetration 0.9" % eps)
+        ref = run("rb_reference", 0.5, line, 150, x0=0.0132, skin=0.006, check_dist="no")
+        per = run("rb_periodic", 0.5, line, 150, x0=0.0132, skin=0.006, check_dist="no", xs=3.0048, bx="p")
+        check(ref is not None and per is not None, "both runs finished on %d rank(s)" % nprocs)
+        if ref is None or per is None:
+            return 1
+        print("  rollbacks %d (%d of re-neighboured steps), refused %d; final relative speed %.15g vs %.15g"
+              % (per["rollbacks"][-1], per["rollbacks_rebuilt"][-1], per["failed"][-1],
+                 -per["restitution"] * -2, -ref["restitution"] * -2))
+        check(per["rollbacks"][-1] >= 1 and per["rollbacks_rebuilt"][-1] >= 1 and per["failed"][-1] == 0,
+              "the step was undone, after re-neighbouring, and not refused")
+        worst = max(abs(a - b) for a, b in zip(ref["gap"], per["gap"]))
+        check(len(ref["gap"]) == len(per["gap"]) and worst <= 1e-12,
+              "the gap equals the non-periodic run at every step (worst difference %.2e m)" % worst)
+        check(abs(per["restitution"] - ref["restitution"]) <= 1e-9 * abs(ref["restitution"]),
+              "and so does the outcome")
     elif case == "control":
         h = closed_form(0.5)
         eps = 1.5 * h["peak"]
@@ -174,6 +228,16 @@ def main():
             return 1
         print("  fixed dt = tc/3: restitution %.4f, peak overlap %.4g (eps %.4g)" % (r["restitution"], r["max_overlap"], eps))
         check(abs(r["restitution"] - 0.5) > 0.005, "a coarse fixed step misses the 1 % restitution bound")
+    elif case == "badinput":
+        for adapt, expect in (("fix dtv all adapt/timestep creep 1.1 rollback yes", "rollback yes needs eps > 0"),
+                              ("fix dtv all adapt/timestep creep 1.1 eps 1e-4 penetration 0.5", "penetration is a rollback setting"),
+                              ("fix dtv all adapt/timestep creep 1.1 dtcontact -1", "dtcontact must be > 0"),
+                              ("fix dtv all adapt/timestep creep 1.1 rollback maybe", "rollback must be yes or no"),
+                              ("fix dtv all adapt/timestep creep 1.1 eps -1", "eps must be >= 0")):
+            rc, out, log = lg.run_deck(a.exe, DECK, a.workdir, "bad", {"e": 0.5, "adapt": adapt, "n": 10,
+                                       "extra": "v_gap", "dt0": 1e-5, "procs": procs, "nstyle": "spacetree"})
+            text = out + (open(log, errors="replace").read() if os.path.exists(log) else "")
+            check(rc != 0 and "ERROR" in text and expect in text, "'%s' stops with an ERROR: %s" % (adapt[28:], expect))
     else:
         print("unknown case", case)
         return 1
