@@ -9,9 +9,10 @@ TEST is one of:
                   relative).  CASE settle: the in.settle pack (radii 0.5-2.5 mm); wide: radii
                   0.4-4 mm (ratio 10, several tree levels, so virtual links and coarse ghosts
                   cross the subdomain boundaries)
-  restart:NP      in.restart on NP ranks: 100 steps + write_restart, then read_restart + 100
-                  steps, against the same 200 steps in one process (same run boundary); the
-                  particle count exactly, the thermo to THERMO_RTOL
+  restart:NP[:NR] in.restart: 100 steps + write_restart on NP ranks, then read_restart + 100
+                  steps on NR ranks (default NP), against the same 200 steps in one process on
+                  NP ranks (same run boundary); the particle count exactly, the thermo to
+                  THERMO_RTOL
 
 Runs, parsing and the thermo comparison come from compare_runs.py.
 Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.
@@ -75,26 +76,27 @@ def test_ranks(R, case, np):
     print("  PASS")
 
 
-def test_restart(R, np):
+def test_restart(R, np, np_read):
     data = R.gen("settle.data", C.SETTLE_GEN)
     v = {"data": data, "restartfile": os.path.join(R.work, "settle.restart")}
     _, t0 = R.run("in.restart", "reference_np%d" % np, np, dict(v, phase="0"))
     R.run("in.restart", "write_np%d" % np, np, dict(v, phase="1"))
     if not os.path.isfile(v["restartfile"]):
         raise C.Fail("write_restart wrote no %s" % v["restartfile"])
-    _, t2 = R.run("in.restart", "read_np%d" % np, np, dict(v, phase="2"))
+    _, t2 = R.run("in.restart", "read_np%d" % np_read, np_read, dict(v, phase="2"))
     ref = C.parse_thermo(t0)
     cont = C.parse_thermo(t2)
     first = cont[1][0][0] if cont[1] else None
     if first != 100.0:
         raise C.Fail("the restarted run starts at step %s, not 100" % first)
     ref = (ref[0], [r for r in ref[1] if r[0] >= first])
-    atoms = check_atoms("restart np%d" % np, ref, cont)
+    atoms = check_atoms("restart np%d -> np%d" % (np, np_read), ref, cont)
     nc = check_contacts("restart", ref)
     print("  %d particles, up to %d contacts; comparing steps %d..%d"
           % (atoms, nc, ref[1][0][0], ref[1][-1][0]))
     worst = C.thermo_diff(ref, cont, "restart")
-    C.report_thermo("restart np%d: read_restart + run vs uninterrupted" % np, worst, len(ref[1]))
+    C.report_thermo("restart written on %d, read on %d ranks vs uninterrupted" % (np, np_read),
+                    worst, len(ref[1]))
     print("  PASS")
 
 
@@ -118,8 +120,8 @@ def main():
         R = C.Runner(a)
         if parts[0] == "ranks" and len(parts) == 3 and parts[1] in RANK_CASES:
             test_ranks(R, parts[1], int(parts[2]))
-        elif parts[0] == "restart" and len(parts) == 2:
-            test_restart(R, int(parts[1]))
+        elif parts[0] == "restart" and len(parts) in (2, 3):
+            test_restart(R, int(parts[1]), int(parts[-1]))
         else:
             print("unknown test '%s'" % a.test)
             return 2

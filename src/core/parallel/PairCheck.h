@@ -17,6 +17,11 @@ class PairCheck {
   // Triangles of a particle; a pair's work is triangleCount(first) * triangleCount(second).
   virtual std::size_t triangleCount(int particle) const = 0;
 
+  // Whether check() may be called on row ranges. A check whose result for a pair is more than
+  // the union of its triangle pairs (e.g. contact de-duplication across the pair) says false and
+  // always gets whole pairs [0, triangleCount(first)).
+  virtual bool splittable() const { return true; }
+
   // Compares triangles [firstBegin, firstEnd) of `first` with every triangle of `second`
   // (first < second) and adds one TriangleContact per triangle pair in contact to the sink.
   // Called concurrently from several threads on different pairs or row ranges: it must not

@@ -41,6 +41,7 @@ void PosedMeshPairCheck::check(int first, int second, std::size_t firstBegin,
         contact.distance = d.distance;
         contact.pointOnFirst = d.pointOnFirst;
         contact.pointOnSecond = d.pointOnSecond;
+        if (d.distance > 0.0) contact.normal = (d.pointOnSecond - d.pointOnFirst) / d.distance;
         sink.add(contact);
       }
   }

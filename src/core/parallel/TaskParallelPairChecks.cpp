@@ -54,7 +54,7 @@ void TaskParallelPairChecks::addPair(int i, int j) {
   stats_.trianglePairs += work;
   const std::size_t grain = options_.taskTrianglePairs;
 
-  if (work > grain && rows > 1) {
+  if (work > grain && rows > 1 && check_->splittable()) {
     // Triangle-level split: row ranges of about `grain` triangle pairs each, one task each.
     const std::size_t rowsPerTask = std::max<std::size_t>(1, grain / std::max<std::size_t>(columns, 1));
     ++stats_.splitPairs;

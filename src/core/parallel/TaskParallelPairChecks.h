@@ -2,7 +2,7 @@
 // checks a pair itself while sweeping: each candidate pair that passed the prechecks is put
 // into the current task; a task is spawned (fire and forget) as soon as it holds enough triangle
 // pairs to amortise the spawn, and a pair with more triangle pairs than that is split at
-// triangle level into several tasks (row ranges of its first particle's triangles). Worker
+// triangle level (if the check allows it) into several tasks (row ranges of its first particle's triangles). Worker
 // threads steal and run the tasks; each task writes its contacts into a buffer of its own, so
 // the hot path has no lock and no atomic. At the end of the sweep the producer joins once
 // (task_group::wait, which makes it help with the remaining tasks), then the buffers are
@@ -13,6 +13,7 @@
 #include <oneapi/tbb/task_arena.h>
 #include <oneapi/tbb/task_group.h>
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -36,6 +37,8 @@ struct TaskParallelStatistics {
   std::uint64_t tasks = 0;          // tasks spawned
   std::uint64_t trianglePairs = 0;  // triangle pairs compared
   std::uint64_t contacts = 0;       // contacts found
+  double producerSeconds = 0.0;     // wall time of the traversal that spawned the tasks
+  double sweepSeconds = 0.0;        // wall time of the whole sweep (produce, join, sort)
 };
 
 class TaskParallelPairChecks {
@@ -51,6 +54,7 @@ class TaskParallelPairChecks {
   // Returns when all have finished, with `contacts` replaced by all contacts in canonical order.
   template <class Producer>
   void run(Producer&& produce, const PairCheck& check, std::vector<TriangleContact>& contacts) {
+    const auto start = std::chrono::steady_clock::now();
     arena_.execute([&] {
       beginSweep(check);
       auto emit = [this](int i, int j) { addPair(i, j); };
@@ -60,8 +64,10 @@ class TaskParallelPairChecks {
         abandonSweep();  // no task may outlive the buffers it writes to
         throw;
       }
+      stats_.producerSeconds = secondsSince(start);
       finishSweep(contacts);
     });
+    stats_.sweepSeconds = secondsSince(start);
   }
 
   // The spacetree sweep as the producer: the pairs of tree.forEachPairWithin (bounding spheres
@@ -88,6 +94,9 @@ class TaskParallelPairChecks {
     std::vector<TriangleContact> contacts;
   };
 
+  static double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   void beginSweep(const PairCheck& check);
   void addPair(int i, int j);
   Task& openTask();   // a fresh (recycled) task buffer

@@ -18,6 +18,9 @@ struct TriangleContact {
   double distance = 0.0;                               // triangle-to-triangle distance
   Eigen::Vector3d pointOnFirst = Eigen::Vector3d::Zero();
   Eigen::Vector3d pointOnSecond = Eigen::Vector3d::Zero();
+  // Unit contact normal from the first particle towards the second; zero where the check does
+  // not define one (touching triangles of PosedMeshPairCheck).
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
 };
 
 // The canonical order: by (first, second, firstTriangle, secondTriangle).
