@@ -1,0 +1,54 @@
+/* spacetree-dem: per-atom state of triangulated rigid particles, kept next to atom_style
+   sphere/granular (x, v, f, radius = bounding radius + eps, rmass, omega, torque):
+     quat[i][4]   orientation body -> world (unit quaternion w,x,y,z); all zero = not yet set
+     angmom[i][3] angular momentum in the world frame
+   The shape of atom i is the template of its type (fix trimesh/template).
+   Created by fix trimesh/template as fix "<template-ID>_state"; never named in a deck.
+   The values follow atoms across ranks (exchange), reach ghosts (border + forward comm of
+   quat, called by the pair style each step) and are written to restart files. */
+
+#ifdef FIX_CLASS
+
+FixStyle(trimesh/state,FixTrimeshState)
+
+#else
+
+#ifndef LMP_FIX_TRIMESH_STATE_H
+#define LMP_FIX_TRIMESH_STATE_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixTrimeshState : public Fix {
+ public:
+  FixTrimeshState(class LAMMPS *, int, char **);
+  ~FixTrimeshState();
+  int setmask() { return 0; }
+
+  void grow_arrays(int);
+  void copy_arrays(int, int, int);
+  void set_arrays(int);
+  int pack_exchange(int, double *);
+  int unpack_exchange(int, double *);
+  int pack_border(int, int *, double *);
+  int unpack_border(int, int, double *);
+  int pack_comm(int, int *, double *, int, int *);
+  void unpack_comm(int, int, double *);
+  int pack_restart(int, double *);
+  void unpack_restart(int, int);
+  int size_restart(int) { return 8; }
+  int maxsize_restart() { return 8; }
+  double memory_usage();
+
+  /* Refresh the orientations of the ghosts (after the owners moved). */
+  void forward_orientations();
+
+  double **quat;
+  double **angmom;
+};
+
+}
+
+#endif
+#endif

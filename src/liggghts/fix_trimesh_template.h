@@ -1,0 +1,67 @@
+/* spacetree-dem: shape templates of triangulated rigid particles, one per atom type
+   (paper §3; core: src/core/geometry MeshIO, RigidShape, DentedSphere).
+
+     fix ID group trimesh/template type T SOURCE [density RHO] [fixed] [type T2 SOURCE ...]
+                                   [orientation file|identity|random SEED]
+       SOURCE = file PATH [scale S]                      (STL ascii/binary or OBJ)
+              | dented ntri N radius R amplitude A seed S
+
+   On setup every owned atom of a template type gets radius = bounding radius + eps (eps of
+   pair_style trimesh), rmass = RHO * volume and, if not yet set, an orientation. Grains are
+   kept in their principal body frame (atom position = centre of mass); a `fixed` type is an
+   obstacle of infinite mass whose mesh stays in file coordinates (atom position = file origin).
+   Per-atom orientation and angular momentum live in the fix trimesh/state "<ID>_state". */
+
+#ifdef FIX_CLASS
+
+FixStyle(trimesh/template,FixTrimeshTemplate)
+
+#else
+
+#ifndef LMP_FIX_TRIMESH_TEMPLATE_H
+#define LMP_FIX_TRIMESH_TEMPLATE_H
+
+#include <memory>
+#include <vector>
+
+#include "fix.h"
+#include "trimesh_type_template.h"
+
+namespace LAMMPS_NS {
+
+class FixTrimeshTemplate : public Fix {
+ public:
+  FixTrimeshTemplate(class LAMMPS *, int, char **);
+  ~FixTrimeshTemplate();
+  void post_create();
+  int setmask();
+  void init();
+  void setup_pre_exchange();
+
+  // radius used for neighbour search and ghost cut-offs: bounding radius + halo
+  double max_rad(int type);
+  double min_rad(int type);
+
+  // Template of atom type t (1..ntypes), NULL where none was given.
+  const TrimeshTypeTemplate *type_template(int t) const;
+  // The halo eps of pair_style trimesh, added to every bounding radius.
+  void set_halo(double eps);
+  double halo() const { return halo_; }
+  class FixTrimeshState *state() const { return state_; }
+
+  // Sets radius and rmass of owned atoms of template types and, with initialise_poses, the
+  // orientation of those whose orientation is still unset (obstacles: file placement too).
+  void apply_to_atoms(bool initialise_poses);
+
+ private:
+  std::vector<std::unique_ptr<TrimeshTypeTemplate>> templates_;   // index = type
+  class FixTrimeshState *state_;
+  double halo_;
+  enum Orientation { OrientFile, OrientIdentity, OrientRandom } orientation_;
+  int orientation_seed_;
+};
+
+}
+
+#endif
+#endif

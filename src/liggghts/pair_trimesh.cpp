@@ -1,0 +1,284 @@
+/* spacetree-dem: pair style for triangulated rigid particles (thin layer over the core's
+   MeshContactFinder and contact force). */
+
+#include "pair_trimesh.h"
+
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include <mpi.h>
+
+#include "atom.h"
+#include "comm.h"
+#include "contact/MeshContact.h"
+#include "dynamics/ContactForce.h"
+#include "dynamics/RigidBody.h"
+#include "error.h"
+#include "fix_trimesh_state.h"
+#include "fix_trimesh_template.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neigh_request.h"
+#include "neighbor.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+namespace ct = spacetree::contact;
+namespace dy = spacetree::dynamics;
+
+namespace {
+
+// The core's view of atom i for the contact kinematics: pose, velocity, angular velocity
+// (as angular momentum; none without rotation), infinite mass for obstacles.
+dy::RigidBody body(const TrimeshTypeTemplate &tt, const ct::Pose &pose, const double *v,
+                   const double *omega, double rmass, bool rotation)
+{
+  dy::RigidBody b = tt.fixed ? dy::RigidBody::fixed(pose.position,pose.orientation)
+                             : dy::RigidBody::free(rmass,tt.inertia * (rmass / tt.mass),
+                                                   pose.position,pose.orientation);
+  if (!tt.fixed) {
+    b.velocity = Eigen::Vector3d(v[0],v[1],v[2]);
+    if (rotation) b.setAngularVelocity(Eigen::Vector3d(omega[0],omega[1],omega[2]));
+  }
+  return b;
+}
+
+}
+
+namespace LAMMPS_NS {
+struct PairTrimeshModel {
+  ct::MeshContactOptions contact;
+  double stiffness = 0.0, damping = 0.0;        // eq. (1): S, D
+  double friction = 0.0, sliding_damping = 0.0; // Coulomb mu, viscous gamma
+  bool rotation = true;
+  std::unique_ptr<dy::NormalSpringDashpot> normal;
+  std::unique_ptr<dy::CoulombFriction> tangential;   // only with friction
+
+  std::unique_ptr<ct::MeshContactFinder> finder;
+  std::vector<ct::ContactPoint> contacts;
+  ct::MeshContactStatistics stats;
+};
+}
+
+PairTrimesh::PairTrimesh(LAMMPS *lmp) :
+  Pair(lmp), model(new PairTrimeshModel), templ(NULL), list(NULL),
+  stat_max_penetration(0)
+{
+  single_enable = 0;
+  restartinfo = 0;
+}
+
+PairTrimesh::~PairTrimesh()
+{
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+  }
+}
+
+void PairTrimesh::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  memory->create(setflag,n+1,n+1,"pair:setflag");
+  memory->create(cutsq,n+1,n+1,"pair:cutsq");
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) setflag[i][j] = 0;
+}
+
+void PairTrimesh::settings(int narg, char **arg)
+{
+  bool have_eps = false, have_s = false, have_d = false;
+  int iarg = 0;
+  while (iarg < narg) {
+    const char *kw = arg[iarg];
+    if (iarg+2 > narg) {
+      std::string msg = std::string("Illegal pair_style trimesh command: keyword '") + kw + "' needs a value";
+      error->all(FLERR,msg.c_str());
+    }
+    const char *val = arg[iarg+1];
+    if (strcmp(kw,"eps") == 0) { model->contact.epsilon = force->numeric(FLERR,val); have_eps = true; }
+    else if (strcmp(kw,"stiffness") == 0) { model->stiffness = force->numeric(FLERR,val); have_s = true; }
+    else if (strcmp(kw,"damping") == 0) { model->damping = force->numeric(FLERR,val); have_d = true; }
+    else if (strcmp(kw,"friction") == 0) {
+      if (iarg+3 > narg) error->all(FLERR,"Illegal pair_style trimesh command: friction needs MU GAMMA");
+      model->friction = force->numeric(FLERR,val);
+      model->sliding_damping = force->numeric(FLERR,arg[iarg+2]);
+      iarg++;
+    } else if (strcmp(kw,"method") == 0) {
+      try { model->contact.method = ct::parseTriangleDistanceMethod(val); }
+      catch (const std::exception &) {
+        std::string msg = std::string("Illegal pair_style trimesh command: method '") + val +
+                          "' (exact, penalty or hybrid)";
+        error->all(FLERR,msg.c_str());
+      }
+    } else if (strcmp(kw,"iterations") == 0) {
+      model->contact.newtonIterations = force->inumeric(FLERR,val);
+      if (model->contact.newtonIterations < 1)
+        error->all(FLERR,"Illegal pair_style trimesh command: iterations must be >= 1");
+    } else if (strcmp(kw,"rotation") == 0) {
+      if (strcmp(val,"yes") == 0) model->rotation = true;
+      else if (strcmp(val,"no") == 0) model->rotation = false;
+      else error->all(FLERR,"Illegal pair_style trimesh command: rotation must be yes or no");
+    } else {
+      std::string msg = std::string("Illegal pair_style trimesh command: unknown keyword '") + kw + "'";
+      error->all(FLERR,msg.c_str());
+    }
+    iarg += 2;
+  }
+  if (!have_eps || !have_s || !have_d)
+    error->all(FLERR,"Illegal pair_style trimesh command: eps, stiffness and damping are required");
+  if (!(model->contact.epsilon > 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: eps must be > 0");
+  if (!(model->stiffness > 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: stiffness must be > 0");
+  if (!(model->damping >= 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: damping must be >= 0");
+  if (!(model->friction >= 0.0) || !(model->sliding_damping >= 0.0))
+    error->all(FLERR,"Illegal pair_style trimesh command: friction MU GAMMA must be >= 0");
+  model->normal.reset(new dy::NormalSpringDashpot(model->stiffness,model->damping));
+  model->tangential.reset();
+  if (model->friction > 0.0 && model->sliding_damping > 0.0)
+    model->tangential.reset(new dy::CoulombFriction(model->friction,model->sliding_damping));
+  model->finder.reset(new ct::MeshContactFinder(model->contact));
+}
+
+void PairTrimesh::coeff(int narg, char **arg)
+{
+  if (narg != 2) error->all(FLERR,"Incorrect args for pair coefficients: pair_coeff * * (no values)");
+  if (!allocated) allocate();
+  int ilo,ihi,jlo,jhi;
+  force->bounds(arg[0],atom->ntypes,ilo,ihi);
+  force->bounds(arg[1],atom->ntypes,jlo,jhi);
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo,i); j <= jhi; j++) { setflag[i][j] = 1; count++; }
+  if (count == 0) error->all(FLERR,"Incorrect args for pair coefficients");
+}
+
+void PairTrimesh::init_style()
+{
+  if (!atom->sphere_flag)
+    error->all(FLERR,"Pair style trimesh requires atom_style sphere or granular (atom style mismatch)");
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR,"Pair style trimesh requires ghost atoms store velocity: use 'communicate single vel yes'");
+  if (force->newton_pair)
+    error->all(FLERR,"Pair style trimesh requires newton off (granular half list, forces on owned atoms)");
+
+  templ = NULL;
+  for (int i = 0; i < modify->nfix; i++)
+    if (strcmp(modify->fix[i]->style,"trimesh/template") == 0) {
+      if (templ) error->all(FLERR,"Pair style trimesh: more than one fix trimesh/template");
+      templ = static_cast<FixTrimeshTemplate*>(modify->fix[i]);
+    }
+  if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
+  templ->set_halo(model->contact.epsilon);
+  templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
+
+  const int irequest = neighbor->request(this);
+  neighbor->requests[irequest]->half = 0;
+  neighbor->requests[irequest]->gran = 1;
+}
+
+void PairTrimesh::init_list(int, NeighList *ptr)
+{
+  list = ptr;
+}
+
+double PairTrimesh::init_one(int i, int j)
+{
+  // bounding radius + eps of each type (fixed obstacles included): the gran list uses the
+  // per-atom radius; this cut-off sizes bins and the ghost shell
+  return templ->max_rad(i) + templ->max_rad(j);
+}
+
+void *PairTrimesh::extract(const char *name, int &dim)
+{
+  dim = 0;
+  if (strcmp(name,"eps") == 0) return (void *) &model->contact.epsilon;
+  return NULL;
+}
+
+void PairTrimesh::contact_statistics(double out[5])
+{
+  double local[4] = {(double) model->stats.contacts, (double) model->stats.bodyPairs,
+                     (double) model->stats.trianglePairsChecked, (double) model->stats.fallbacks};
+  MPI_Allreduce(local,out,4,MPI_DOUBLE,MPI_SUM,world);
+  MPI_Allreduce(&stat_max_penetration,&out[4],1,MPI_DOUBLE,MPI_MAX,world);
+}
+
+void PairTrimesh::compute(int eflag, int vflag)
+{
+  if (eflag || vflag) ev_setup(eflag,vflag);
+  else evflag = vflag_fdotr = 0;
+
+  // ghosts need the owners' current orientation (positions came with the regular comm)
+  templ->state()->forward_orientations();
+
+  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega;
+  double **torque = atom->torque;
+  double *rmass = atom->rmass, *radius = atom->radius;
+  int *type = atom->type;
+  double **quat = templ->state()->quat;
+  const int nlocal = atom->nlocal;
+  const bool rotation = model->rotation;
+
+  model->stats = ct::MeshContactStatistics();
+  stat_max_penetration = 0.0;
+
+  const int inum = list->inum;
+  int *ilist = list->ilist, *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const TrimeshTypeTemplate *ti = templ->type_template(type[i]);
+    if (!ti) continue;
+    int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const TrimeshTypeTemplate *tj = templ->type_template(type[j]);
+      if (!tj || (ti->fixed && tj->fixed)) continue;
+
+      // bounding-sphere precheck on radius = R + eps: surfaces closer than 2 eps needs this
+      const double dx = x[i][0]-x[j][0], dy = x[i][1]-x[j][1], dz = x[i][2]-x[j][2];
+      const double radsum = radius[i] + radius[j];
+      if (dx*dx + dy*dy + dz*dz >= radsum*radsum) continue;
+
+      ct::Pose pi, pj;
+      pi.position = Eigen::Vector3d(x[i][0],x[i][1],x[i][2]);
+      pi.orientation = Eigen::Quaterniond(quat[i][0],quat[i][1],quat[i][2],quat[i][3]);
+      pj.position = Eigen::Vector3d(x[j][0],x[j][1],x[j][2]);
+      pj.orientation = Eigen::Quaterniond(quat[j][0],quat[j][1],quat[j][2],quat[j][3]);
+
+      model->contacts.clear();
+      const std::size_t nc = model->finder->find(ti->shape,pi,tj->shape,pj,model->contacts,&model->stats);
+      if (nc == 0) continue;
+
+      dy::RigidBody bi = body(*ti,pi,v[i],omega[i],rmass[i],rotation);
+      dy::RigidBody bj = body(*tj,pj,v[j],omega[j],rmass[j],rotation);
+      const bool j_owned = force->newton_pair || j < nlocal;
+
+      for (const ct::ContactPoint &c : model->contacts) {
+        stat_max_penetration = std::max(stat_max_penetration,c.penetration);
+        const dy::ContactKinematics k = dy::contactKinematics(bi,bj,c);
+        const double fn = model->normal->normalForce(k);
+        Eigen::Vector3d fi = -fn * k.normal;
+        if (model->tangential) fi += model->tangential->forceOnFirst(k,fn);
+        f[i][0] += fi[0]; f[i][1] += fi[1]; f[i][2] += fi[2];
+        if (j_owned) { f[j][0] -= fi[0]; f[j][1] -= fi[1]; f[j][2] -= fi[2]; }
+        if (rotation) {
+          const Eigen::Vector3d tqi = (c.point - pi.position).cross(fi);
+          torque[i][0] += tqi[0]; torque[i][1] += tqi[1]; torque[i][2] += tqi[2];
+          if (j_owned) {
+            const Eigen::Vector3d tqj = (c.point - pj.position).cross(-fi);
+            torque[j][0] += tqj[0]; torque[j][1] += tqj[1]; torque[j][2] += tqj[2];
+          }
+        }
+      }
+    }
+  }
+}

@@ -1,0 +1,63 @@
+/* spacetree-dem: contacts of triangulated rigid particles (paper §3, §6.2; core:
+   src/core/contact/MeshContact, src/core/dynamics/ContactForce).
+
+     pair_style trimesh eps E stiffness S damping D [method exact|penalty|hybrid]
+                        [friction MU] [rotation yes|no]
+     pair_coeff * *
+
+   Candidate pairs come from a granular half list (newton off; `neighbor ... bin` or
+   `neighbor ... spacetree`) built on radius = bounding radius + E. Per pair: bounding-sphere
+   precheck |xi - xj| < Ri + Rj + 2E, then the core's triangle checks; a contact where two
+   surfaces are closer than 2E, force per eq. (1) (core ContactForce): spring on the halo
+   overlap plus damping while approaching; Coulomb friction only with `friction MU`, torques
+   and angular velocities only with `rotation yes` (default). Obstacles (fixed template
+   types) have infinite mass. Statistics: compute trimesh/contacts. */
+
+#ifdef PAIR_CLASS
+
+PairStyle(trimesh,PairTrimesh)
+
+#else
+
+#ifndef LMP_PAIR_TRIMESH_H
+#define LMP_PAIR_TRIMESH_H
+
+#include <memory>
+
+#include "pair.h"
+
+namespace LAMMPS_NS {
+
+struct PairTrimeshModel;
+
+class PairTrimesh : public Pair {
+ public:
+  PairTrimesh(class LAMMPS *);
+  ~PairTrimesh();
+  void compute(int, int);
+  void settings(int, char **);
+  void coeff(int, char **);
+  void init_style();
+  void init_list(int, class NeighList *);
+  double init_one(int, int);
+  double single(int, int, int, int, double, double, double, double &) { return 0.0; }
+  void write_restart(FILE *) {}
+  void read_restart(FILE *) {}
+  void *extract(const char *, int &);
+  // Of the last compute, summed over ranks: contacts, body pairs tested, triangle pairs
+  // checked, hybrid fallbacks; and the largest penetration (halo overlap eps - d/2, <= eps).
+  void contact_statistics(double out[5]);
+
+ private:
+  void allocate();
+
+  std::unique_ptr<PairTrimeshModel> model;
+  class FixTrimeshTemplate *templ;
+  class NeighList *list;
+  double stat_max_penetration;
+};
+
+}
+
+#endif
+#endif

@@ -1,0 +1,355 @@
+#!/usr/bin/env python3
+"""Regression tests of the triangulated rigid particles (pair_style trimesh, fix trimesh/template,
+fix nve/trimesh, dump trimesh/vtk, compute trimesh/contacts).
+
+  trimesh_check.py CASE --exe EXE --workdir DIR [--mpiexec M --mpiexec-flags=F]
+
+Cases (each prints PASS/FAIL lines; exit status 0 = all passed):
+  collide   two cubes corner to corner: restitution = the spring-dashpot value (damping only
+            while approaching) within 2 %, for exact/penalty/hybrid, rotation yes/no, and under
+            fix adapt/timestep (reset_dt of fix nve/trimesh)
+  floor     dented sphere on a fixed floor: comes to rest (kinetic energy < 1e-12 J), the surface
+            never sinks more than eps below the floor, contacts stay
+  edge      a tilted cube dropped on its edge turns the right way and ends flat on a face
+  ranks     six spinning particles crossing the rank boundary: 1 and 2 ranks give the same surfaces
+  restart   write_restart / read_restart half way = one uninterrupted run
+  bad       bad input stops with a clear ERROR
+  hopper    short version of inputs/hopper: no particle lost, no penetration beyond eps
+"""
+import argparse
+import glob
+import math
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+OK = True
+
+
+def check(cond, what):
+    global OK
+    print(("PASS " if cond else "FAIL ") + what, flush=True)
+    OK = OK and bool(cond)
+
+
+def write_stl(path, tris):
+    with open(path, "w") as f:
+        f.write("solid s\n")
+        for t in tris:
+            f.write(" facet normal 0 0 0\n  outer loop\n")
+            for v in t:
+                f.write("   vertex %.17g %.17g %.17g\n" % tuple(v))
+            f.write("  endloop\n endfacet\n")
+        f.write("endsolid s\n")
+
+
+def box_triangles(lo, hi):
+    """Closed, outward-oriented box."""
+    x0, y0, z0 = lo
+    x1, y1, z1 = hi
+    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
+         (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+    quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (2, 3, 7, 6), (1, 2, 6, 5), (3, 0, 4, 7)]
+    tris = []
+    for a, b, c, d in quads:
+        tris.append((v[a], v[b], v[c]))
+        tris.append((v[a], v[c], v[d]))
+    return np.array(tris, dtype=float)
+
+
+def rotation_onto(a, b):
+    a = a / np.linalg.norm(a)
+    b = b / np.linalg.norm(b)
+    v = np.cross(a, b)
+    c = float(np.dot(a, b))
+    k = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
+    return np.eye(3) + k + k @ k / (1.0 + c)
+
+
+def cube_diag_stl(path, edge):
+    h = edge / 2
+    tris = box_triangles((-h, -h, -h), (h, h, h))
+    r = rotation_onto(np.array([1.0, 1.0, 1.0]), np.array([1.0, 0.0, 0.0]))
+    write_stl(path, tris @ r.T)
+
+
+def run(a, deck, workdir, name, vars_, np_=1, expect_fail=False, timeout=600):
+    log = os.path.join(workdir, "log." + name)
+    cmd = [a.exe, "-in", os.path.join(HERE, deck), "-log", log, "-echo", "none"]
+    for k, v in vars_.items():
+        cmd += ["-var", k, str(v)]
+    if np_ > 1:
+        cmd = [a.mpiexec] + [f for f in a.mpiexec_flags.split(";") if f] + ["-np", str(np_)] + cmd
+    p = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       errors="replace", text=True, timeout=timeout)
+    if p.returncode != 0 and not expect_fail:
+        print(p.stdout[-3000:])
+    return p.returncode, p.stdout, log
+
+
+def thermo(log):
+    rows, on = [], False
+    for line in open(log, errors="replace"):
+        s = line.strip()
+        if s.startswith("Step"):
+            on = True
+            continue
+        if on:
+            if s.startswith("Loop time"):
+                on = False
+                continue
+            try:
+                rows.append([float(t) for t in s.split()])
+            except ValueError:
+                pass
+    return np.array(rows)
+
+
+def read_vtk(path):
+    """Points (n x 3) and per-cell ids of a dump trimesh/vtk file."""
+    lines = open(path).read().split("\n")
+    i = next(k for k, l in enumerate(lines) if l.startswith("POINTS"))
+    n = int(lines[i].split()[1])
+    pts = np.array([[float(t) for t in l.split()] for l in lines[i + 1:i + 1 + n]])
+    j = next(k for k, l in enumerate(lines) if l.startswith("POLYGONS"))
+    m = int(lines[j].split()[1])
+    cells = np.array([[int(t) for t in l.split()[1:]] for l in lines[j + 1:j + 1 + m]])
+    k = next(k for k, l in enumerate(lines) if l.startswith("SCALARS id"))
+    ids = np.array([int(l) for l in lines[k + 2:k + 2 + m]])
+    return pts, cells, ids
+
+
+def restitution_analytic(S, D):
+    """Eq. (1): F = S (eps - d/2) + 2 D sqrt(m_eff) v_n while approaching. In the relative
+    approach delta = 2 eps - d the spring is S/2, so omega0^2 = S / (2 m_eff) and the damping
+    ratio zeta = D / sqrt(S/2), independent of the mass. Compression damped, restitution
+    undamped: e = exp(-zeta / sqrt(1 - zeta^2) * atan(sqrt(1 - zeta^2) / zeta))."""
+    zeta = D / math.sqrt(S / 2.0)
+    w = math.sqrt(1.0 - zeta * zeta)
+    return math.exp(-zeta / w * math.atan2(w, zeta)), zeta
+
+
+def case_collide(a):
+    wd = a.workdir
+    cube_diag_stl(os.path.join(wd, "cube_diag.stl"), 0.01)
+    S, D, v0 = 5e5, 150.0, 0.5
+    e_ref, zeta = restitution_analytic(S, D)
+    print("analytic restitution e = %.6f (zeta = %.4f)" % (e_ref, zeta))
+    adapt = "fix ad all adapt/timestep creep 1.1 dtmax 2e-6"
+    for method, rot, extra in (("exact", "no", None), ("hybrid", "yes", None), ("penalty", "yes", None),
+                               ("hybrid", "yes", adapt)):
+        vars_ = dict(method=method, rot=rot, S=S, D=D, v0=v0, n=2500)
+        if extra:
+            vars_["adapt"] = extra
+            rot += " + fix adapt/timestep"
+        rc, out, log = run(a, "trimesh_collide.in", wd, "collide_%s_%s" % (method, "adapt" if extra else rot), vars_)
+        check(rc == 0, "collide %s rotation %s runs" % (method, rot))
+        if rc != 0:
+            continue
+        t = thermo(log)
+        vrel, ncont, pen = t[:, 1], t[:, 2], t[:, 3]
+        e = vrel[-1] / (-vrel[0])
+        check(abs(e / e_ref - 1) < 0.02,
+              "collide %s rotation %s: restitution %.5f vs analytic %.5f (%.2f %%)"
+              % (method, rot, e, e_ref, 100 * (e / e_ref - 1)))
+        check(ncont.max() == 1, "collide %s: corner-corner contact is one de-duplicated point (max %d)"
+              % (method, ncont.max()))
+        check(0 < pen.max() < 1e-4, "collide %s: largest penetration %.3g in (0, eps): surfaces never touch" % (method, pen.max()))
+        check(ncont[-1] == 0, "collide %s: cubes separated at the end" % method)
+        if extra:
+            dt = t[:, 5]
+            check(dt.min() < 0.5e-6 and dt[-1] == 2e-6,
+                  "collide with fix adapt/timestep: dt cut at impact (min %.3g s), back to 2e-6 s" % dt.min())
+            # the integrator follows the changing step: separation speed = d(sep)/d(time)
+            time_, sep = t[:, 6], t[:, 7]
+            speed = (sep[-1] - sep[-10]) / (time_[-1] - time_[-10])
+            check(abs(speed / vrel[-1] - 1) < 1e-6,
+                  "collide with fix adapt/timestep: d(separation)/d(time) %.8g = v_rel %.8g" % (speed, vrel[-1]))
+
+
+def case_floor(a):
+    wd = a.workdir
+    write_stl(os.path.join(wd, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
+    n = 60000
+    rc, out, log = run(a, "trimesh_floor.in", wd, "floor",
+                       dict(n=n, method="hybrid", S=2e4, D=100, gamma=5))
+    check(rc == 0, "floor runs")
+    if rc != 0:
+        return
+    t = thermo(log)
+    ke = t[:, 4]
+    print("kinetic energy every 6000 steps:", " ".join("%.3g" % k for k in ke[::6]))
+    check(ke[-1] < 1e-12, "floor: kinetic energy at the end %.3g J < 1e-12 J" % ke[-1])
+    check(ke[-1] < 1e-6 * ke.max(), "floor: kinetic energy decayed by > 1e6 (max %.3g J)" % ke.max())
+    check(t[-1, 2] >= 2, "floor: grain rests on >= 2 contact points at the end (%d)" % t[-1, 2])
+    eps = 1e-4
+    check(t[:, 3].max() < eps, "floor: penetration below eps, surfaces never touch (max %.3g)" % t[:, 3].max())
+    pts, cells, ids = read_vtk(os.path.join(wd, "floor_%d.vtk" % n))
+    grain = np.unique(cells[ids == 1])
+    zmin = pts[grain, 2].min()
+    check(-eps <= zmin <= 2 * eps, "floor: lowest grain vertex z = %.3g in [-eps, 2 eps] above the floor top 0" % zmin)
+    floor = np.unique(cells[ids == 2])
+    check(abs(pts[floor, 2].max()) < 1e-12 and abs(pts[floor, 0].min() + 0.025) < 1e-12,
+          "floor: obstacle stays where the file puts it")
+
+
+def case_edge(a):
+    """A cube tilted by 30 degrees about y, dropped onto its lowest edge (at x > 0 of its centre):
+    the floor's push at that edge must turn it with omega_y < 0 (towards lying flat), and it
+    must come to rest on a face (its vertices at two heights, 0 + halo and the edge length)."""
+    wd = a.workdir
+    write_stl(os.path.join(wd, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
+    h, th = 0.005, math.radians(30)
+    c, s_ = math.cos(th), math.sin(th)
+    ry = np.array([[c, 0, s_], [0, 1, 0], [-s_, 0, c]])
+    write_stl(os.path.join(wd, "cube_tilt.stl"), box_triangles((-h, -h, -h), (h, h, h)) @ ry.T)
+    z0 = h * (s_ + c) + 0.0003
+    n = 60000
+    rc, out, log = run(a, "trimesh_floor.in", wd, "edge",
+                       dict(n=n, method="hybrid", S=2e4, D=100, gamma=5, grain="file cube_tilt.stl",
+                            z0=z0, th=100))
+    check(rc == 0, "edge: cube dropped on its edge runs")
+    if rc != 0:
+        return
+    t = thermo(log)
+    ncont, wy = t[:, 2], t[:, 5]
+    first = int(np.argmax(ncont > 0))
+    check(ncont.max() > 0, "edge: the edge hits the floor at step %d" % t[first, 0])
+    after = wy[first + 1:first + 20]
+    check(after.size > 0 and after[np.argmax(np.abs(after))] < 0,
+          "edge: it starts rotating with omega_y < 0 (largest |omega_y| after impact %.4g rad/s)"
+          % after[np.argmax(np.abs(after))])
+    pts, cells, ids = read_vtk(os.path.join(wd, "floor_%d.vtk" % n))
+    z = np.sort(pts[np.unique(cells[ids == 1]), 2])
+    check(abs(z[:4].max() - z[:4].min()) < 1e-5 and abs(z[4:].min() - z[:4].max() - 2 * h) < 1e-5 and
+          0 < z[0] < 2e-4,
+          "edge: the cube ends flat on a face (vertex heights %.3g..%.3g and %.5g..%.5g m)"
+          % (z[0], z[3], z[4], z[7]))
+
+
+def case_ranks(a):
+    wd = a.workdir
+    n = 6000
+    res = {}
+    for np_ in (1, 2):
+        sub = os.path.join(wd, "np%d" % np_)
+        os.makedirs(sub, exist_ok=True)
+        rc, out, log = run(a, "trimesh_ranks.in", sub, "ranks", dict(n=n, np=np_, after="print done"), np_=np_)
+        check(rc == 0, "ranks: %d rank(s) runs" % np_)
+        if rc != 0:
+            return
+        res[np_] = (read_vtk(os.path.join(sub, "ranks_%d.vtk" % n)), thermo(log))
+    (p1, c1, i1), t1 = res[1]
+    (p2, c2, i2), t2 = res[2]
+    check(p1.shape == p2.shape and (c1 == c2).all() and (i1 == i2).all(), "ranks: same surfaces (triangles, ids)")
+    d = np.abs(p1 - p2).max()
+    check(d < 1e-9, "ranks: max vertex difference 1 vs 2 ranks %.3g m < 1e-9 m" % d)
+    check(t1[:, 1].max() >= 1, "ranks: particles collided (max contacts %d)" % t1[:, 1].max())
+    check(t1[-1, 2] < 0.9 * t1[0, 2], "ranks: collisions dissipated energy (%.4g -> %.4g J)" % (t1[0, 2], t1[-1, 2]))
+    dke = np.abs(t1[:, 2] - t2[:, 2]).max() / t1[0, 2]
+    check(t1.shape == t2.shape and dke < 1e-9, "ranks: same kinetic energy history (max rel. diff %.3g)" % dke)
+    p0, _, _ = read_vtk(os.path.join(wd, "np1", "ranks_0.vtk"))
+    moved = np.abs(p1 - p0).max()
+    check(moved > 0.005, "ranks: particles moved (max vertex displacement %.3g m)" % moved)
+
+
+def case_restart(a):
+    wd = a.workdir
+    n = 4000
+    rc, _, log = run(a, "trimesh_ranks.in", wd, "full", dict(n=n, np=1, after="print done"))
+    check(rc == 0, "restart: uninterrupted run")
+    rc2, _, _ = run(a, "trimesh_ranks.in", wd, "first", dict(n=n // 2, np=1, after="write_restart half.restart"))
+    check(rc2 == 0 and os.path.exists(os.path.join(wd, "half.restart")), "restart: first half + write_restart")
+    rc3, _, _ = run(a, "trimesh_restart.in", wd, "second", dict(n=n // 2, file="half.restart"), np_=2)
+    check(rc3 == 0, "restart: read_restart + second half on 2 ranks")
+    if rc or rc2 or rc3:
+        return
+    pa, ca, _ = read_vtk(os.path.join(wd, "ranks_%d.vtk" % n))
+    pb, cb, _ = read_vtk(os.path.join(wd, "restarted_%d.vtk" % n))
+    d = np.abs(pa - pb).max() if pa.shape == pb.shape else float("inf")
+    check(d < 1e-9, "restart: surfaces after restart = uninterrupted run (max diff %.3g m)" % d)
+
+
+BAD = {
+    "missing_file": ("fix shapes all trimesh/template type 1 file no_such_mesh.stl",
+                     r"ERROR.*no_such_mesh\.stl"),
+    "template_keyword": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7 bogus 3",
+                         r"ERROR.*unknown keyword 'bogus'"),
+    "pair_keyword": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                     "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 wobble 2",
+                     r"ERROR.*unknown keyword 'wobble'"),
+    "method": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+               "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method fast",
+               r"ERROR.*method 'fast'"),
+    "open_mesh": ("fix shapes all trimesh/template type 1 file open.stl",
+                  r"ERROR.*open\.stl.*open surface"),
+    "atom_style": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7",
+                   r"ERROR.*requires atom_style sphere or granular"),
+}
+
+
+def case_bad(a):
+    wd = a.workdir
+    tris = box_triangles((0, 0, 0), (1, 1, 1))[:-1]
+    write_stl(os.path.join(wd, "open.stl"), tris)
+    for name, (lines, rx) in BAD.items():
+        style = "atomic" if name == "atom_style" else "granular"
+        deck = os.path.join(wd, "in." + name)
+        with open(deck, "w") as f:
+            f.write("atom_style %s\nboundary f f f\nnewton off\ncommunicate single vel yes\nunits si\n"
+                    "region box block 0 1 0 1 0 1\ncreate_box 1 box\n%s\n" % (style, lines))
+        p = subprocess.run([a.exe, "-in", deck, "-echo", "none", "-log", "none"], cwd=wd,
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace",
+                           timeout=60)
+        m = re.search(rx, p.stdout)
+        check(p.returncode != 0 and m, "bad %s: %s" % (name, m.group(0) if m else p.stdout[-300:]))
+
+
+def case_hopper(a):
+    wd = a.workdir
+    gen = os.path.join(ROOT, "inputs", "hopper", "make_hopper.py")
+    subprocess.run([sys.executable, gen, os.path.join(wd, "hopper.stl"), os.path.join(wd, "floor.stl")], check=True)
+    n = a.hopper_steps
+    rc, out, log = run(a, os.path.join(ROOT, "inputs", "hopper", "in.hopper"), wd, "hopper",
+                       dict(n=n, nx=a.hopper_nx, a=0.007, zlo=0.05, v0=2.0, dumpevery=n, th=10, meshdir=".",
+                            nstyle=a.hopper_neighbor), np_=2)
+    check(rc == 0, "hopper: short run on 2 ranks")
+    if rc != 0:
+        return
+    t = thermo(log)
+    natoms = t[:, 1]
+    check(natoms.min() == natoms.max() == natoms[0], "hopper: no particle lost (%d atoms throughout)" % natoms[0])
+    pen = t[:, 3].max()
+    # penetration eps means the rigid surfaces touch (d = 0): it must stay below
+    check(pen < 5e-5, "hopper: largest penetration %.3g < eps 5e-5 (surfaces never touch)" % pen)
+    check(t[:, 2].max() >= 1, "hopper: grains touch the hopper/floor/each other (max contacts %d)" % t[:, 2].max())
+    zmean = t[:, 4]
+    check(zmean[-1] < zmean[0] - 0.003, "hopper: grains fall (mean z %.4f -> %.4f)" % (zmean[0], zmean[-1]))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("case", choices=["collide", "floor", "edge", "ranks", "restart", "bad", "hopper"])
+    ap.add_argument("--exe", required=True)
+    ap.add_argument("--workdir", required=True)
+    ap.add_argument("--mpiexec", default="mpirun")
+    ap.add_argument("--mpiexec-flags", default="--allow-run-as-root;--oversubscribe")
+    ap.add_argument("--hopper-steps", type=int, default=2500)
+    ap.add_argument("--hopper-nx", type=int, default=4)
+    ap.add_argument("--hopper-neighbor", default="spacetree")
+    a = ap.parse_args()
+    a.exe = os.path.abspath(a.exe)
+    os.makedirs(a.workdir, exist_ok=True)
+    for f in glob.glob(os.path.join(a.workdir, "*.vtk")):
+        os.remove(f)
+    globals()["case_" + a.case](a)
+    return 0 if OK else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
