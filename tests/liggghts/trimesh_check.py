@@ -236,14 +236,18 @@ def case_ranks(a):
     wd = a.workdir
     n = 6000
     res = {}
-    for np_ in (1, 2):
-        sub = os.path.join(wd, "np%d" % np_)
+    for np_, nstyle in ((1, "bin"), (2, "bin"), (2, "spacetree")):
+        sub = os.path.join(wd, "np%d_%s" % (np_, nstyle))
         os.makedirs(sub, exist_ok=True)
-        rc, out, log = run(a, "trimesh_ranks.in", sub, "ranks", dict(n=n, np=np_, after="print done"), np_=np_)
-        check(rc == 0, "ranks: %d rank(s) runs" % np_)
+        rc, out, log = run(a, "trimesh_ranks.in", sub, "ranks",
+                           dict(n=n, np=np_, nstyle=nstyle, after="print done"), np_=np_)
+        check(rc == 0, "ranks: %d rank(s), neighbor %s runs" % (np_, nstyle))
         if rc != 0:
             return
-        res[np_] = (read_vtk(os.path.join(sub, "ranks_%d.vtk" % n)), thermo(log))
+        res[np_ if nstyle == "bin" else nstyle] = (read_vtk(os.path.join(sub, "ranks_%d.vtk" % n)), thermo(log))
+    (ps, _, _), ts = res["spacetree"]
+    ds = np.abs(ps - res[1][0][0]).max() if ps.shape == res[1][0][0].shape else float("inf")
+    check(ds < 1e-9, "ranks: neighbor spacetree on 2 ranks = bin on 1 rank (max vertex difference %.3g m)" % ds)
     (p1, c1, i1), t1 = res[1]
     (p2, c2, i2), t2 = res[2]
     check(p1.shape == p2.shape and (c1 == c2).all() and (i1 == i2).all(), "ranks: same surfaces (triangles, ids)")
@@ -253,7 +257,7 @@ def case_ranks(a):
     check(t1[-1, 2] < 0.9 * t1[0, 2], "ranks: collisions dissipated energy (%.4g -> %.4g J)" % (t1[0, 2], t1[-1, 2]))
     dke = np.abs(t1[:, 2] - t2[:, 2]).max() / t1[0, 2]
     check(t1.shape == t2.shape and dke < 1e-9, "ranks: same kinetic energy history (max rel. diff %.3g)" % dke)
-    p0, _, _ = read_vtk(os.path.join(wd, "np1", "ranks_0.vtk"))
+    p0, _, _ = read_vtk(os.path.join(wd, "np1_bin", "ranks_0.vtk"))
     moved = np.abs(p1 - p0).max()
     check(moved > 0.005, "ranks: particles moved (max vertex displacement %.3g m)" % moved)
 
