@@ -11,6 +11,7 @@ Cases (each prints PASS/FAIL lines; exit status 0 = all passed):
   floor     dented sphere on a fixed floor: comes to rest (kinetic energy < 1e-12 J), the surface
             never sinks more than eps below the floor, contacts stay
   edge      a tilted cube dropped on its edge turns the right way and ends flat on a face
+  insert    grains from fix insert/pack get their templates (1 and 2 ranks) and land on a floor
   ranks     six spinning particles crossing the rank boundary: 1 and 2 ranks give the same surfaces
   restart   write_restart / read_restart half way = one uninterrupted run
   bad       bad input stops with a clear ERROR
@@ -232,6 +233,35 @@ def case_edge(a):
           % (z[0], z[3], z[4], z[7]))
 
 
+def case_insert(a):
+    """Grains inserted by fix insert/pack get their template (radius = bounding radius + eps,
+    template mass, orientation) before the next list build, on 1 and 2 ranks, and land on the floor."""
+    wd = a.workdir
+    write_stl(os.path.join(wd, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
+    n = 4000
+    for np_ in (1, 2):
+        sub = os.path.join(wd, "np%d" % np_)
+        os.makedirs(sub, exist_ok=True)
+        write_stl(os.path.join(sub, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
+        rc, out, log = run(a, "trimesh_insert.in", sub, "insert", dict(n=n, np=np_), np_=np_)
+        check(rc == 0 and "inserted 20 particle templates" in out, "insert: %d rank(s): 20 grains inserted" % np_)
+        if rc != 0:
+            return
+        t = thermo(log)
+        t = t[1:]   # step 0: before the insertion
+        check((t[:, 1] == 21).all(), "insert: %d rank(s): no grain lost (21 atoms with the floor)" % np_)
+        rmax, mmin = t[:, 4].max(), t[:, 5].min()
+        check(0.0025 < rmax < 0.0031 and abs(mmin - 1.2269e-4) < 1e-7,
+              "insert: %d rank(s): radius = template bounding radius + eps (%.6g < sphere template 0.0031),"
+              " mass = template mass %.6g kg" % (np_, rmax, mmin))
+        check(t[:, 2].max() >= 1 and t[:, 3].max() < 5e-5,
+              "insert: %d rank(s): grains reach the floor (max contacts %d), penetration %.3g < eps"
+              % (np_, t[:, 2].max(), t[:, 3].max()))
+        pts, cells, ids = read_vtk(os.path.join(sub, "insert_%d.vtk" % n))
+        check(np.isfinite(pts).all() and len(np.unique(ids)) == 21 and pts[:, 2].min() > -0.0101,
+              "insert: %d rank(s): 21 finite surfaces in the last frame" % np_)
+
+
 def case_ranks(a):
     wd = a.workdir
     n = 6000
@@ -338,7 +368,7 @@ def case_hopper(a):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("case", choices=["collide", "floor", "edge", "ranks", "restart", "bad", "hopper"])
+    ap.add_argument("case", choices=["collide", "floor", "edge", "insert", "ranks", "restart", "bad", "hopper"])
     ap.add_argument("--exe", required=True)
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--mpiexec", default="mpirun")
