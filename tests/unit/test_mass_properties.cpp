@@ -168,6 +168,25 @@ TEST(RigidShape, BoxIsMovedIntoItsPrincipalFrame) {
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
     EXPECT_LE((q * shape.bodyMesh.vertices[v] + shape.centreOfMassInMesh - mesh.vertices[v]).norm(),
               1e-13);
+  // Adjacency: the apex across each edge belongs to the triangle on the other side, which
+  // traverses the edge the other way; every vertex of a box mesh has 3 to 6 neighbours.
+  ASSERT_EQ(shape.edgeApex.size(), shape.triangleCount());
+  const auto& tris = shape.bodyMesh.triangles;
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = tris[t][k], b = tris[t][(k + 1) % 3], apex = shape.edgeApex[t][k];
+      bool found = false;
+      for (const auto& f : tris)
+        for (int m = 0; m < 3; ++m)
+          found |= f[m] == b && f[(m + 1) % 3] == a && f[(m + 2) % 3] == apex;
+      EXPECT_TRUE(found) << t << " " << k;
+    }
+  ASSERT_EQ(shape.vertexNeighbourOffsets.size(), shape.bodyMesh.vertexCount() + 1);
+  for (std::size_t v = 0; v < shape.bodyMesh.vertexCount(); ++v) {
+    const int count = shape.vertexNeighbourOffsets[v + 1] - shape.vertexNeighbourOffsets[v];
+    EXPECT_GE(count, 3);
+    EXPECT_LE(count, 6);
+  }
   // Triangle bounding spheres contain their triangles.
   ASSERT_EQ(shape.triangleCentres.size(), shape.triangleCount());
   for (std::size_t t = 0; t < shape.triangleCount(); ++t)

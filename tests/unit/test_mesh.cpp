@@ -128,6 +128,14 @@ TEST_F(MeshFiles, ObjFormsPolygonsAndNegativeIndices) {
   EXPECT_NEAR(signedVolume(mesh), 1.0, 1e-15);
 }
 
+TEST_F(MeshFiles, UnknownExtensionIsSniffed) {
+  const TriangleMesh mesh = boxMesh(Vector3d(1, 2, 3));
+  writeStlBinary(mesh, path("a.mesh"));
+  writeStlAscii(mesh, path("b.txt"));
+  writeObj(mesh, path("c"));
+  for (const char* name : {"a.mesh", "b.txt", "c"}) expectSameMesh(mesh, readMesh(path(name)), 0.0);
+}
+
 TEST_F(MeshFiles, EachBadFileGivesItsMeshError) {
   const std::string missing = path("missing.stl");
   expectMeshError([&] { readMesh(missing); }, missing, "cannot open");

@@ -41,9 +41,9 @@
 // duplicates: a vertex touching a face is found once per triangle around the vertex. The
 // average (point, unit normal, penetration) is weighted by the penetrations, not plain as in
 // the paper: a triangle pair that just enters the 2 eps band has weight 0, so the merged force
-// changes continuously. This matters for spurious neighbours such as the interior diagonal
-// edge of a flat floor face, whose edge-edge contact is slanted: with plain averaging it would
-// tilt the merged normal by up to degrees and push a resting particle sideways.
+// changes continuously (with plain averaging, a slanted contact entering the band - e.g. one
+// that the filter (5b) is switched off for - tilted the merged normal of a resting particle by
+// 1e-3 rad at once).
 // Work is done in the first body's frame (only the second body's triangles near the first
 // are transformed); contacts are returned in the world frame.
 #pragma once
@@ -89,6 +89,11 @@ struct MeshContactOptions {
   double mergeNormalCosine = 0.9;  // "reasonably close normals": within about 25 degrees
   // Optional hook after the bounding-sphere check: gets both poses and the gap between the
   // bounding spheres (centre distance - radii, may be negative); return false to skip the pair.
+  // Only pairs that cannot have a contact now may be skipped: a pair in halo contact that is
+  // separating still feels the spring S (eps - |n|) of eq. (1), so "not approaching" alone is
+  // no reason to skip it here (the paper uses its approach check for grid refinement, §5).
+  // Example: a caller that knows the surfaces were farther apart than 2 eps + v_max dt one
+  // step ago can skip the triangle checks.
   std::function<bool(const Pose& first, const Pose& second, double sphereGap)> approachPrecheck;
 };
 
