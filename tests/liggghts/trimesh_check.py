@@ -79,6 +79,26 @@ def cube_diag_stl(path, edge):
     write_stl(path, tris @ r.T)
 
 
+def write_obj(path, tris, scale=1.0):
+    """Indexed Wavefront OBJ (shared vertices, 1-based faces) of a triangle soup."""
+    index, verts, faces = {}, [], []
+    for t in tris:
+        f = []
+        for v in t:
+            key = tuple(float(c) for c in v)
+            if key not in index:
+                index[key] = len(verts) + 1
+                verts.append(key)
+            f.append(index[key])
+        faces.append(f)
+    with open(path, "w") as out:
+        out.write("# cube\n")
+        for v in verts:
+            out.write("v %.17g %.17g %.17g\n" % tuple(c * scale for c in v))
+        for f in faces:
+            out.write("f %d %d %d\n" % tuple(f))
+
+
 def run(a, deck, workdir, name, vars_, np_=1, expect_fail=False, timeout=600):
     log = os.path.join(workdir, "log." + name)
     cmd = [a.exe, "-in", os.path.join(HERE, deck), "-log", log, "-echo", "none"]
@@ -138,6 +158,10 @@ def restitution_analytic(S, D):
 def case_collide(a):
     wd = a.workdir
     cube_diag_stl(os.path.join(wd, "cube_diag.stl"), 0.01)
+    # the same cube as an OBJ in millimetres, read with `scale 1e-3` by the penalty run
+    h = 0.005
+    r = rotation_onto(np.array([1.0, 1.0, 1.0]), np.array([1.0, 0.0, 0.0]))
+    write_obj(os.path.join(wd, "cube_diag_mm.obj"), box_triangles((-h, -h, -h), (h, h, h)) @ r.T, 1000.0)
     S, D, v0 = 5e5, 150.0, 0.5
     e_ref, zeta = restitution_analytic(S, D)
     print("analytic restitution e = %.6f (zeta = %.4f)" % (e_ref, zeta))
@@ -145,6 +169,9 @@ def case_collide(a):
     for method, rot, extra in (("exact", "no", None), ("hybrid", "yes", None), ("penalty", "yes", None),
                                ("hybrid", "yes", adapt)):
         vars_ = dict(method=method, rot=rot, S=S, D=D, v0=v0, n=2500)
+        if method == "penalty":
+            vars_["shape"] = "cube_diag_mm.obj scale 1e-3"
+            rot += " (OBJ in mm, scale 1e-3)"
         if extra:
             vars_["adapt"] = extra
             rot += " + fix adapt/timestep"
