@@ -10,7 +10,7 @@
    pair_style trimesh), rmass = RHO * volume and, if not yet set, an orientation. Grains are
    kept in their principal body frame (atom position = centre of mass); a `fixed` type is an
    obstacle of infinite mass whose mesh stays in file coordinates (atom position = file origin).
-   Atoms inserted during a run (fix insert/*) get their template before the next neighbour
+   Atoms inserted during a run (fix insert/pack, insert/stream, ...) get their template before the next neighbour
    list build (pre_neighbor, ghosts refreshed too).
    Per-atom orientation and angular momentum live in the fix trimesh/state "<ID>_state". */
 
