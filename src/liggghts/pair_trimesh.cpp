@@ -220,7 +220,7 @@ void PairTrimesh::compute(int eflag, int vflag)
   double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega;
   double **torque = atom->torque;
   double *rmass = atom->rmass, *radius = atom->radius;
-  int *type = atom->type;
+  int *type = atom->type, *tag = atom->tag;
   double **quat = templ->state()->quat;
   const int nlocal = atom->nlocal;
   const bool rotation = model->rotation;
@@ -248,34 +248,47 @@ void PairTrimesh::compute(int eflag, int vflag)
       const double radsum = radius[i] + radius[j];
       if (dx*dx + dy*dy + dz*dz >= radsum*radsum) continue;
 
-      ct::Pose pi, pj;
-      pi.position = Eigen::Vector3d(x[i][0],x[i][1],x[i][2]);
-      pi.orientation = Eigen::Quaterniond(quat[i][0],quat[i][1],quat[i][2],quat[i][3]);
-      pj.position = Eigen::Vector3d(x[j][0],x[j][1],x[j][2]);
-      pj.orientation = Eigen::Quaterniond(quat[j][0],quat[j][1],quat[j][2],quat[j][3]);
+      // Canonical order, the same on every rank (with newton off a pair across two ranks is
+      // computed on both): the body with more triangles first - the core searches in the first
+      // body's frame and transforms only the second's triangles, so a big obstacle goes first
+      // (pair time of the hopper short case -9 %, median of 3) - ties broken by the smaller ID.
+      const std::size_t ni = ti->shape.triangleCount(), nj = tj->shape.triangleCount();
+      const bool swap = nj > ni || (nj == ni && tag[j] < tag[i]);
+      const int a = swap ? j : i, b = swap ? i : j;
+      const TrimeshTypeTemplate *ta = swap ? tj : ti, *tb = swap ? ti : tj;
+
+      ct::Pose pa, pb;
+      pa.position = Eigen::Vector3d(x[a][0],x[a][1],x[a][2]);
+      pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
+      pb.position = Eigen::Vector3d(x[b][0],x[b][1],x[b][2]);
+      pb.orientation = Eigen::Quaterniond(quat[b][0],quat[b][1],quat[b][2],quat[b][3]);
 
       model->contacts.clear();
-      const std::size_t nc = model->finder->find(ti->shape,pi,tj->shape,pj,model->contacts,&model->stats);
+      const std::size_t nc = model->finder->find(ta->shape,pa,tb->shape,pb,model->contacts,&model->stats);
       if (nc == 0) continue;
 
-      dy::RigidBody bi = body(*ti,pi,v[i],omega[i],rmass[i],rotation);
-      dy::RigidBody bj = body(*tj,pj,v[j],omega[j],rmass[j],rotation);
-      const bool j_owned = force->newton_pair || j < nlocal;
+      dy::RigidBody ba = body(*ta,pa,v[a],omega[a],rmass[a],rotation);
+      dy::RigidBody bb = body(*tb,pb,v[b],omega[b],rmass[b],rotation);
+      // i is owned; j only where newton off lets this rank add to it
+      const bool a_owned = force->newton_pair || a < nlocal;
+      const bool b_owned = force->newton_pair || b < nlocal;
 
       for (const ct::ContactPoint &c : model->contacts) {
         stat_max_penetration = std::max(stat_max_penetration,c.penetration);
-        const dy::ContactKinematics k = dy::contactKinematics(bi,bj,c);
+        const dy::ContactKinematics k = dy::contactKinematics(ba,bb,c);
         const double fn = model->normal->normalForce(k);
-        Eigen::Vector3d fi = -fn * k.normal;
-        if (model->tangential) fi += model->tangential->forceOnFirst(k,fn);
-        f[i][0] += fi[0]; f[i][1] += fi[1]; f[i][2] += fi[2];
-        if (j_owned) { f[j][0] -= fi[0]; f[j][1] -= fi[1]; f[j][2] -= fi[2]; }
+        Eigen::Vector3d fa = -fn * k.normal;     // on the first body; the second gets -fa
+        if (model->tangential) fa += model->tangential->forceOnFirst(k,fn);
+        if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
+        if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
         if (rotation) {
-          const Eigen::Vector3d tqi = (c.point - pi.position).cross(fi);
-          torque[i][0] += tqi[0]; torque[i][1] += tqi[1]; torque[i][2] += tqi[2];
-          if (j_owned) {
-            const Eigen::Vector3d tqj = (c.point - pj.position).cross(-fi);
-            torque[j][0] += tqj[0]; torque[j][1] += tqj[1]; torque[j][2] += tqj[2];
+          if (a_owned) {
+            const Eigen::Vector3d tq = (c.point - pa.position).cross(fa);
+            torque[a][0] += tq[0]; torque[a][1] += tq[1]; torque[a][2] += tq[2];
+          }
+          if (b_owned) {
+            const Eigen::Vector3d tq = (c.point - pb.position).cross(-fa);
+            torque[b][0] += tq[0]; torque[b][1] += tq[1]; torque[b][2] += tq[2];
           }
         }
       }
