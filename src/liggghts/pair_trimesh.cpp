@@ -4,6 +4,7 @@
 #include "pair_trimesh.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -25,6 +26,7 @@
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
+#include "trimesh_parallel_contacts.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -59,8 +61,9 @@ struct PairTrimeshModel {
   std::unique_ptr<dy::NormalSpringDashpot> normal;
   std::unique_ptr<dy::CoulombFriction> tangential;   // only with friction
 
-  std::unique_ptr<ct::MeshContactFinder> finder;
-  std::vector<ct::ContactPoint> contacts;
+  int threads = 0;                              // threads keyword: 0 = TBB default, 1 = serial
+  std::unique_ptr<TrimeshParallelContacts> search;
+  std::vector<TrimeshCandidatePair> pairs;
   ct::MeshContactStatistics stats;
 };
 }
@@ -125,6 +128,15 @@ void PairTrimesh::settings(int narg, char **arg)
       if (strcmp(val,"yes") == 0) model->rotation = true;
       else if (strcmp(val,"no") == 0) model->rotation = false;
       else error->all(FLERR,"Illegal pair_style trimesh command: rotation must be yes or no");
+    } else if (strcmp(kw,"threads") == 0) {
+      char *end = NULL;
+      const long n = strtol(val,&end,10);
+      if (end == val || *end != '\0' || n < 0 || n > 4096) {
+        std::string msg = std::string("Illegal pair_style trimesh command: threads '") + val +
+                          "' must be an integer >= 0 (0 = TBB default, 1 = serial)";
+        error->all(FLERR,msg.c_str());
+      }
+      model->threads = int(n);
     } else {
       std::string msg = std::string("Illegal pair_style trimesh command: unknown keyword '") + kw + "'";
       error->all(FLERR,msg.c_str());
@@ -142,7 +154,9 @@ void PairTrimesh::settings(int narg, char **arg)
   model->tangential.reset();
   if (model->friction > 0.0 && model->sliding_damping > 0.0)
     model->tangential.reset(new dy::CoulombFriction(model->friction,model->sliding_damping));
-  model->finder.reset(new ct::MeshContactFinder(model->contact));
+  model->search.reset(new TrimeshParallelContacts(model->contact,model->threads));
+  if (comm->me == 0 && screen)
+    fprintf(screen,"pair_style trimesh: triangle checks on %d thread(s)\n",model->search->threads());
 }
 
 void PairTrimesh::coeff(int narg, char **arg)
@@ -227,6 +241,7 @@ void PairTrimesh::compute(int eflag, int vflag)
 
   model->stats = ct::MeshContactStatistics();
   stat_max_penetration = 0.0;
+  model->pairs.clear();
 
   const int inum = list->inum;
   int *ilist = list->ilist, *numneigh = list->numneigh;
@@ -262,18 +277,32 @@ void PairTrimesh::compute(int eflag, int vflag)
       pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
       pb.position = Eigen::Vector3d(x[b][0],x[b][1],x[b][2]);
       pb.orientation = Eigen::Quaterniond(quat[b][0],quat[b][1],quat[b][2],quat[b][3]);
+      model->pairs.push_back({a,b,&ta->shape,&tb->shape,pa,pb});
+    }
+  }
 
-      model->contacts.clear();
-      const std::size_t nc = model->finder->find(ta->shape,pa,tb->shape,pb,model->contacts,&model->stats);
-      if (nc == 0) continue;
+  // The triangle checks of all candidates: serially (threads 1) or as tasks of the core engine;
+  // the forces below follow the candidates and their contacts in list order either way.
+  try { model->search->search(model->pairs,model->stats); }
+  catch (const std::exception &e) {
+    error->one(FLERR,(std::string("pair_style trimesh: contact search failed: ") + e.what()).c_str());
+  }
 
+  for (std::size_t kp = 0; kp < model->pairs.size(); kp++) {
+    const std::vector<ct::ContactPoint> &contacts = model->search->contacts(kp);
+    if (contacts.empty()) continue;
+    {
+      const TrimeshCandidatePair &p = model->pairs[kp];
+      const int a = p.a, b = p.b;
+      const ct::Pose &pa = p.pose_a, &pb = p.pose_b;
+      const TrimeshTypeTemplate *ta = templ->type_template(type[a]), *tb = templ->type_template(type[b]);
       dy::RigidBody ba = body(*ta,pa,v[a],omega[a],rmass[a],rotation);
       dy::RigidBody bb = body(*tb,pb,v[b],omega[b],rmass[b],rotation);
       // i is owned; j only where newton off lets this rank add to it
       const bool a_owned = force->newton_pair || a < nlocal;
       const bool b_owned = force->newton_pair || b < nlocal;
 
-      for (const ct::ContactPoint &c : model->contacts) {
+      for (const ct::ContactPoint &c : contacts) {
         stat_max_penetration = std::max(stat_max_penetration,c.penetration);
         const dy::ContactKinematics k = dy::contactKinematics(ba,bb,c);
         const double fn = model->normal->normalForce(k);
