@@ -55,7 +55,8 @@ def thermo(wd, tag):
 
 
 def dumps(wd, tag):
-    return sorted(os.path.basename(f)[len(tag):] for f in glob.glob(os.path.join(wd, tag + "_*")))
+    names = [os.path.basename(f)[len(tag):] for f in glob.glob(os.path.join(wd, tag + "_*"))]
+    return sorted(names, key=lambda n: (int(re.match(r"_(\d+)", n).group(1)), n))  # by step
 
 
 def same_dumps(wd, ref, tag):
@@ -128,7 +129,7 @@ if __name__ == "__main__":
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--mpiexec-flags", default="--oversubscribe")
-    ap.add_argument("--steps", type=int, default=1000)
+    ap.add_argument("--steps", type=int, default=1500)
     a = ap.parse_args()
     os.makedirs(a.workdir, exist_ok=True)
     for f in glob.glob(os.path.join(a.workdir, "np*_t*")) + glob.glob(os.path.join(a.workdir, "log.*")):
