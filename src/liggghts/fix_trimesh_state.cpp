@@ -12,12 +12,12 @@
 using namespace LAMMPS_NS;
 
 FixTrimeshState::FixTrimeshState(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), quat(NULL), angmom(NULL)
+  Fix(lmp, narg, arg), quat(NULL), angmom(NULL), with_shape_(false)
 {
   if (narg != 3) error->all(FLERR,"Illegal fix trimesh/state command: it takes no arguments");
   restart_peratom = 1;
   create_attribute = 1;
-  comm_forward = 4;
+  comm_forward = 6;   // the largest forward comm (forward_shapes)
   comm_border = 4;
 
   grow_arrays(atom->nmax);
@@ -94,21 +94,34 @@ int FixTrimeshState::unpack_border(int n, int first, double *buf)
 int FixTrimeshState::pack_comm(int n, int *list, double *buf, int, int *)
 {
   int m = 0;
-  for (int ii = 0; ii < n; ii++)
-    for (int k = 0; k < 4; k++) buf[m++] = quat[list[ii]][k];
-  return 4;   // Comm::forward_comm_fix wants the count per atom
+  for (int ii = 0; ii < n; ii++) {
+    const int j = list[ii];
+    for (int k = 0; k < 4; k++) buf[m++] = quat[j][k];
+    if (with_shape_) { buf[m++] = atom->radius[j]; buf[m++] = atom->rmass[j]; }
+  }
+  return with_shape_ ? 6 : 4;   // Comm::forward_comm_fix wants the count per atom
 }
 
 void FixTrimeshState::unpack_comm(int n, int first, double *buf)
 {
   int m = 0;
-  for (int i = first; i < first+n; i++)
+  for (int i = first; i < first+n; i++) {
     for (int k = 0; k < 4; k++) quat[i][k] = buf[m++];
+    if (with_shape_) { atom->radius[i] = buf[m++]; atom->rmass[i] = buf[m++]; }
+  }
 }
 
 void FixTrimeshState::forward_orientations()
 {
+  with_shape_ = false;
   comm->forward_comm_fix(this);
+}
+
+void FixTrimeshState::forward_shapes()
+{
+  with_shape_ = true;
+  comm->forward_comm_fix(this);
+  with_shape_ = false;
 }
 
 int FixTrimeshState::pack_restart(int i, double *buf)

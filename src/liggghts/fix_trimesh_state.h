@@ -43,9 +43,14 @@ class FixTrimeshState : public Fix {
 
   /* Refresh the orientations of the ghosts (after the owners moved). */
   void forward_orientations();
+  /* Refresh orientation, radius and rmass of the ghosts (after owners got their template). */
+  void forward_shapes();
 
   double **quat;
   double **angmom;
+
+ private:
+  bool with_shape_;   // forward comm: quat only, or quat + radius + rmass
 };
 
 }

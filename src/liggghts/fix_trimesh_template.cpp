@@ -10,6 +10,8 @@
 #include <exception>
 #include <string>
 
+#include <mpi.h>
+
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
@@ -138,9 +140,9 @@ void FixTrimeshTemplate::post_create()
 
 int FixTrimeshTemplate::setmask()
 {
-  // PRE_EXCHANGE for setup_pre_exchange() (poses of new atoms before the ghosts are made);
-  // pre_exchange() itself does nothing
-  return FixConst::PRE_EXCHANGE;
+  // PRE_EXCHANGE for setup_pre_exchange() (poses of new atoms before the ghosts are made;
+  // pre_exchange() itself does nothing); PRE_NEIGHBOR for atoms inserted during a run
+  return FixConst::PRE_EXCHANGE | FixConst::PRE_NEIGHBOR;
 }
 
 void FixTrimeshTemplate::init()
@@ -154,6 +156,26 @@ void FixTrimeshTemplate::init()
 void FixTrimeshTemplate::setup_pre_exchange()
 {
   apply_to_atoms(true);
+}
+
+bigint FixTrimeshTemplate::count_new_atoms() const
+{
+  bigint mine = 0, all = 0;
+  double **quat = state_->quat;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (type_template(atom->type[i]) &&
+        quat[i][0] == 0.0 && quat[i][1] == 0.0 && quat[i][2] == 0.0 && quat[i][3] == 0.0) mine++;
+  MPI_Allreduce(&mine,&all,1,MPI_LMP_BIGINT,MPI_SUM,world);
+  return all;
+}
+
+void FixTrimeshTemplate::pre_neighbor()
+{
+  // insertion fixes create spheres (set_arrays leaves quat = 0) in pre_exchange: give them
+  // their template, then refresh the ghosts' radius/mass/orientation before the list build
+  if (count_new_atoms() == 0) return;
+  apply_to_atoms(true);
+  state_->forward_shapes();
 }
 
 void FixTrimeshTemplate::set_halo(double eps)

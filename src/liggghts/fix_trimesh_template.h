@@ -10,6 +10,8 @@
    pair_style trimesh), rmass = RHO * volume and, if not yet set, an orientation. Grains are
    kept in their principal body frame (atom position = centre of mass); a `fixed` type is an
    obstacle of infinite mass whose mesh stays in file coordinates (atom position = file origin).
+   Atoms inserted during a run (fix insert/pack, insert/stream, ...) get their template before the next neighbour
+   list build (pre_neighbor, ghosts refreshed too).
    Per-atom orientation and angular momentum live in the fix trimesh/state "<ID>_state". */
 
 #ifdef FIX_CLASS
@@ -37,6 +39,7 @@ class FixTrimeshTemplate : public Fix {
   int setmask();
   void init();
   void setup_pre_exchange();
+  void pre_neighbor();
 
   // radius used for neighbour search and ghost cut-offs: bounding radius + halo
   double max_rad(int type);
@@ -49,6 +52,8 @@ class FixTrimeshTemplate : public Fix {
   double halo() const { return halo_; }
   class FixTrimeshState *state() const { return state_; }
 
+  // Owned atoms of template types whose orientation is unset (new atoms), summed over ranks.
+  bigint count_new_atoms() const;
   // Sets radius and rmass of owned atoms of template types and, with initialise_poses, the
   // orientation of those whose orientation is still unset (obstacles: file placement too).
   void apply_to_atoms(bool initialise_poses);

@@ -2,7 +2,7 @@
    src/core/contact/MeshContact, src/core/dynamics/ContactForce).
 
      pair_style trimesh eps E stiffness S damping D [method exact|penalty|hybrid]
-                        [friction MU] [rotation yes|no]
+                        [friction MU] [rotation yes|no] [threads N]
      pair_coeff * *
 
    Candidate pairs come from a granular half list (newton off; `neighbor ... bin` or
@@ -11,7 +11,9 @@
    surfaces are closer than 2E, force per eq. (1) (core ContactForce): spring on the halo
    overlap plus damping while approaching; Coulomb friction only with `friction MU`, torques
    and angular velocities only with `rotation yes` (default). Obstacles (fixed template
-   types) have infinite mass. Statistics: compute trimesh/contacts. */
+   types) have infinite mass. Statistics: compute trimesh/contacts. `threads N`: the triangle
+   checks of a step as TBB tasks on N threads (0 = TBB default, 1 = serial; same trajectory bit
+   for bit, trimesh_parallel_contacts.h). */
 
 #ifdef PAIR_CLASS
 

@@ -1,9 +1,9 @@
 # Triangulated rigid particles (pair_style trimesh, fix trimesh/template, fix nve/trimesh,
 # dump trimesh/vtk, compute trimesh/contacts). Driver: trimesh_check.py; decks: trimesh_*.in,
 # inputs/hopper/. Run: ctest --test-dir build -R liggghts.trimesh
-foreach(case collide floor edge ranks restart bad hopper)
+foreach(case collide floor edge insert ranks restart bad hopper)
   set(_np 1)
-  if(case STREQUAL "ranks" OR case STREQUAL "restart" OR case STREQUAL "hopper")
+  if(case MATCHES "^(ranks|restart|hopper|insert)$")
     set(_np 2)
   endif()
   add_test(NAME liggghts.trimesh.${case}

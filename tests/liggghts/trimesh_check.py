@@ -11,6 +11,7 @@ Cases (each prints PASS/FAIL lines; exit status 0 = all passed):
   floor     dented sphere on a fixed floor: comes to rest (kinetic energy < 1e-12 J), the surface
             never sinks more than eps below the floor, contacts stay
   edge      a tilted cube dropped on its edge turns the right way and ends flat on a face
+  insert    grains from fix insert/pack get their templates (1 and 2 ranks) and land on a floor
   ranks     six spinning particles crossing the rank boundary: 1 and 2 ranks give the same surfaces
   restart   write_restart / read_restart half way = one uninterrupted run
   bad       bad input stops with a clear ERROR
@@ -78,6 +79,26 @@ def cube_diag_stl(path, edge):
     write_stl(path, tris @ r.T)
 
 
+def write_obj(path, tris, scale=1.0):
+    """Indexed Wavefront OBJ (shared vertices, 1-based faces) of a triangle soup."""
+    index, verts, faces = {}, [], []
+    for t in tris:
+        f = []
+        for v in t:
+            key = tuple(float(c) for c in v)
+            if key not in index:
+                index[key] = len(verts) + 1
+                verts.append(key)
+            f.append(index[key])
+        faces.append(f)
+    with open(path, "w") as out:
+        out.write("# cube\n")
+        for v in verts:
+            out.write("v %.17g %.17g %.17g\n" % tuple(c * scale for c in v))
+        for f in faces:
+            out.write("f %d %d %d\n" % tuple(f))
+
+
 def run(a, deck, workdir, name, vars_, np_=1, expect_fail=False, timeout=600):
     log = os.path.join(workdir, "log." + name)
     cmd = [a.exe, "-in", os.path.join(HERE, deck), "-log", log, "-echo", "none"]
@@ -137,6 +158,10 @@ def restitution_analytic(S, D):
 def case_collide(a):
     wd = a.workdir
     cube_diag_stl(os.path.join(wd, "cube_diag.stl"), 0.01)
+    # the same cube as an OBJ in millimetres, read with `scale 1e-3` by the penalty run
+    h = 0.005
+    r = rotation_onto(np.array([1.0, 1.0, 1.0]), np.array([1.0, 0.0, 0.0]))
+    write_obj(os.path.join(wd, "cube_diag_mm.obj"), box_triangles((-h, -h, -h), (h, h, h)) @ r.T, 1000.0)
     S, D, v0 = 5e5, 150.0, 0.5
     e_ref, zeta = restitution_analytic(S, D)
     print("analytic restitution e = %.6f (zeta = %.4f)" % (e_ref, zeta))
@@ -144,6 +169,9 @@ def case_collide(a):
     for method, rot, extra in (("exact", "no", None), ("hybrid", "yes", None), ("penalty", "yes", None),
                                ("hybrid", "yes", adapt)):
         vars_ = dict(method=method, rot=rot, S=S, D=D, v0=v0, n=2500)
+        if method == "penalty":
+            vars_["shape"] = "cube_diag_mm.obj scale 1e-3"
+            rot += " (OBJ in mm, scale 1e-3)"
         if extra:
             vars_["adapt"] = extra
             rot += " + fix adapt/timestep"
@@ -232,18 +260,51 @@ def case_edge(a):
           % (z[0], z[3], z[4], z[7]))
 
 
+def case_insert(a):
+    """Grains inserted by fix insert/pack get their template (radius = bounding radius + eps,
+    template mass, orientation) before the next list build, on 1 and 2 ranks, and land on the floor."""
+    wd = a.workdir
+    write_stl(os.path.join(wd, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
+    n = 4000
+    for np_ in (1, 2):
+        sub = os.path.join(wd, "np%d" % np_)
+        os.makedirs(sub, exist_ok=True)
+        write_stl(os.path.join(sub, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
+        rc, out, log = run(a, "trimesh_insert.in", sub, "insert", dict(n=n, np=np_), np_=np_)
+        check(rc == 0 and "inserted 20 particle templates" in out, "insert: %d rank(s): 20 grains inserted" % np_)
+        if rc != 0:
+            return
+        t = thermo(log)
+        t = t[1:]   # step 0: before the insertion
+        check((t[:, 1] == 21).all(), "insert: %d rank(s): no grain lost (21 atoms with the floor)" % np_)
+        rmax, mmin = t[:, 4].max(), t[:, 5].min()
+        check(0.0025 < rmax < 0.0031 and abs(mmin - 1.2269e-4) < 1e-7,
+              "insert: %d rank(s): radius = template bounding radius + eps (%.6g < sphere template 0.0031),"
+              " mass = template mass %.6g kg" % (np_, rmax, mmin))
+        check(t[:, 2].max() >= 1 and t[:, 3].max() < 5e-5,
+              "insert: %d rank(s): grains reach the floor (max contacts %d), penetration %.3g < eps"
+              % (np_, t[:, 2].max(), t[:, 3].max()))
+        pts, cells, ids = read_vtk(os.path.join(sub, "insert_%d.vtk" % n))
+        check(np.isfinite(pts).all() and len(np.unique(ids)) == 21 and pts[:, 2].min() > -0.0101,
+              "insert: %d rank(s): 21 finite surfaces in the last frame" % np_)
+
+
 def case_ranks(a):
     wd = a.workdir
     n = 6000
     res = {}
-    for np_ in (1, 2):
-        sub = os.path.join(wd, "np%d" % np_)
+    for np_, nstyle in ((1, "bin"), (2, "bin"), (2, "spacetree")):
+        sub = os.path.join(wd, "np%d_%s" % (np_, nstyle))
         os.makedirs(sub, exist_ok=True)
-        rc, out, log = run(a, "trimesh_ranks.in", sub, "ranks", dict(n=n, np=np_, after="print done"), np_=np_)
-        check(rc == 0, "ranks: %d rank(s) runs" % np_)
+        rc, out, log = run(a, "trimesh_ranks.in", sub, "ranks",
+                           dict(n=n, np=np_, nstyle=nstyle, after="print done"), np_=np_)
+        check(rc == 0, "ranks: %d rank(s), neighbor %s runs" % (np_, nstyle))
         if rc != 0:
             return
-        res[np_] = (read_vtk(os.path.join(sub, "ranks_%d.vtk" % n)), thermo(log))
+        res[np_ if nstyle == "bin" else nstyle] = (read_vtk(os.path.join(sub, "ranks_%d.vtk" % n)), thermo(log))
+    (ps, _, _), ts = res["spacetree"]
+    ds = np.abs(ps - res[1][0][0]).max() if ps.shape == res[1][0][0].shape else float("inf")
+    check(ds < 1e-9, "ranks: neighbor spacetree on 2 ranks = bin on 1 rank (max vertex difference %.3g m)" % ds)
     (p1, c1, i1), t1 = res[1]
     (p2, c2, i2), t2 = res[2]
     check(p1.shape == p2.shape and (c1 == c2).all() and (i1 == i2).all(), "ranks: same surfaces (triangles, ids)")
@@ -253,7 +314,7 @@ def case_ranks(a):
     check(t1[-1, 2] < 0.9 * t1[0, 2], "ranks: collisions dissipated energy (%.4g -> %.4g J)" % (t1[0, 2], t1[-1, 2]))
     dke = np.abs(t1[:, 2] - t2[:, 2]).max() / t1[0, 2]
     check(t1.shape == t2.shape and dke < 1e-9, "ranks: same kinetic energy history (max rel. diff %.3g)" % dke)
-    p0, _, _ = read_vtk(os.path.join(wd, "np1", "ranks_0.vtk"))
+    p0, _, _ = read_vtk(os.path.join(wd, "np1_bin", "ranks_0.vtk"))
     moved = np.abs(p1 - p0).max()
     check(moved > 0.005, "ranks: particles moved (max vertex displacement %.3g m)" % moved)
 
@@ -334,7 +395,7 @@ def case_hopper(a):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("case", choices=["collide", "floor", "edge", "ranks", "restart", "bad", "hopper"])
+    ap.add_argument("case", choices=["collide", "floor", "edge", "insert", "ranks", "restart", "bad", "hopper"])
     ap.add_argument("--exe", required=True)
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--mpiexec", default="mpirun")

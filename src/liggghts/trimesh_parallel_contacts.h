@@ -1,0 +1,62 @@
+/* spacetree-dem: the contact search of pair_style trimesh over the candidate pairs of one
+   compute() (neighbour-list pairs that passed the bounding-sphere precheck, in neighbour-list
+   order, each in the pair style's canonical body order). With 1 thread the pairs are searched
+   one after the other on the calling thread (the serial path); otherwise they become pair-check
+   tasks of the core engine (parallel/TaskParallelPairChecks: the list is the producer, tasks of
+   whole pairs run on a TBB arena, one join per compute).
+   Candidate k is "particle pair" (2k, 2k+1) of the engine and its contact c is reported as
+   triangle pair (c, 0), so the engine's canonical order (first, second, firstTriangle, ...) is
+   (k, c): the neighbour-list order of the serial path. The pair style applies forces in that
+   order, so forces, torques and trajectories are bit-identical for any thread count. Each pair's
+   ContactPoints are written by the one task that searches it (pairs are never split), so the
+   full points reach the force law without a lock. Not LIGGGHTS-specific, but kept next to the
+   only adapter that uses it. */
+
+#ifndef LMP_TRIMESH_PARALLEL_CONTACTS_H
+#define LMP_TRIMESH_PARALLEL_CONTACTS_H
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "contact/MeshContact.h"
+#include "geometry/RigidShape.h"
+
+namespace LAMMPS_NS {
+
+// One candidate pair: local atom indices (a first in the canonical body order), shapes, poses.
+struct TrimeshCandidatePair {
+  int a, b;
+  const spacetree::geometry::RigidShape *shape_a, *shape_b;
+  spacetree::contact::Pose pose_a, pose_b;
+};
+
+class TrimeshParallelContacts {
+ public:
+  // threads: 1 = serial on the calling thread, 0 = TBB's default, N > 1 = an arena of N
+  // threads (the TBB thread limit is raised to N if N exceeds the cores). Throws
+  // std::invalid_argument for threads < 0.
+  TrimeshParallelContacts(const spacetree::contact::MeshContactOptions &options, int threads);
+  ~TrimeshParallelContacts();
+
+  // Searches every pair; afterwards contacts(k) are the contacts of pairs[k]. `stats` gets the
+  // search counters of this call added (integers: the same for any thread count).
+  void search(const std::vector<TrimeshCandidatePair> &pairs,
+              spacetree::contact::MeshContactStatistics &stats);
+  const std::vector<spacetree::contact::ContactPoint> &contacts(std::size_t k) const {
+    return found_[k];
+  }
+  // Threads that search (1 on the serial path) and tasks spawned by the last search.
+  int threads() const;
+  std::size_t tasks() const;
+
+ private:
+  struct Engine;
+  std::unique_ptr<spacetree::contact::MeshContactFinder> serial_;  // threads == 1
+  std::unique_ptr<Engine> engine_;                                 // threads != 1
+  std::vector<std::vector<spacetree::contact::ContactPoint>> found_;
+};
+
+}
+
+#endif
