@@ -183,13 +183,18 @@ void FixAdaptTimestep::init()
     error->all(FLERR,"Fix adapt/timestep: dtmin exceeds dtmax");
   if (policy.dtContact > policy.dtMax && comm->me == 0)
     error->warning(FLERR,"Fix adapt/timestep: dtcontact exceeds dtmax and has no effect");
-  if (force->pair == NULL || dynamic_cast<PairGran*>(force->pair) == NULL) {
-    if (veto_on || rollback_on || policy.dtContact > 0.0)
-      error->all(FLERR,"Fix adapt/timestep veto, rollback and dtcontact need a granular pair style "
-                 "(or use veto no without them)");
-  } else {
+  // Overlaps (dtcontact, rollback) are contacts only for sphere pair styles (pair gran). Other
+  // styles on a granular list (pair trimesh: radius = bounding radius + halo) get the veto over
+  // their bounding spheres, which is conservative: it acts before the bounding spheres meet.
+  const bool sphere_contacts = force->pair && dynamic_cast<PairGran*>(force->pair);
+  if (!sphere_contacts && (rollback_on || policy.dtContact > 0.0 || eps > 0.0))
+    error->all(FLERR,"Fix adapt/timestep eps, rollback and dtcontact need a granular sphere pair style "
+               "(pair_style gran ...)");
+  if (!force->pair && veto_on)
+    error->all(FLERR,"Fix adapt/timestep veto needs a pair style with a granular neighbour list "
+               "(or use veto no)");
+  if (sphere_contacts || (force->pair && veto_on))
     request_granular_list_copy(neighbor,this,GranularListUser::Fix);
-  }
   if (update->whichflag == 1 && strncmp(update->integrate_style,"verlet",6) != 0)
     error->all(FLERR,"Fix adapt/timestep needs run_style verlet");
   // the skin/2 cap only keeps the lists valid when they are rebuilt as soon as they may be stale
