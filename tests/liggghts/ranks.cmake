@@ -9,16 +9,8 @@ set(_ranks_driver "${CMAKE_CURRENT_SOURCE_DIR}/check_ranks.py")
 function(ranks_test driver_name timeout nprocs)
   string(REPLACE ":" "." ctest_name "liggghts.${driver_name}")
   string(REPLACE ":" "_" work "${driver_name}")
-  add_test(NAME "${ctest_name}"
-           COMMAND "${Python3_EXECUTABLE}" "${_ranks_driver}" "${driver_name}"
-                   --exe "${LIGGGHTS_EXE}"
-                   --mpiexec "${MPIEXEC_EXECUTABLE}"
-                   "--mpiexec-flags=${SPACETREE_MPIEXEC_PREFLAGS}"
-                   --python "${Python3_EXECUTABLE}"
-                   --workdir "${_workroot}/${work}"
-                   --timeout ${timeout})
-  set_tests_properties("${ctest_name}" PROPERTIES LABELS liggghts TIMEOUT ${timeout}
-                       PROCESSORS ${nprocs})
+  lg_driver_test("${ctest_name}" "${_ranks_driver}" "${driver_name}" "${work}" ${timeout} ${nprocs}
+                 MPI_FLAGS PYTHON_AND_TIMEOUT)
 endfunction()
 
 foreach(case settle wide)

@@ -6,12 +6,6 @@ foreach(case threads ranks bad)
   if(case STREQUAL "ranks")
     set(_np 2)
   endif()
-  add_test(NAME liggghts.threads.${case}
-           COMMAND "${Python3_EXECUTABLE}" "${CMAKE_CURRENT_SOURCE_DIR}/check_threads.py" ${case}
-                   --exe "${LIGGGHTS_EXE}"
-                   --mpiexec "${MPIEXEC_EXECUTABLE}"
-                   "--mpiexec-flags=${SPACETREE_MPIEXEC_PREFLAGS}"
-                   --workdir "${_workroot}/threads_${case}")
-  set_tests_properties(liggghts.threads.${case} PROPERTIES
-                       LABELS liggghts TIMEOUT 180 PROCESSORS ${_np})
+  lg_driver_test(liggghts.threads.${case} "${CMAKE_CURRENT_SOURCE_DIR}/check_threads.py" ${case}
+                 threads_${case} 180 ${_np} MPI_FLAGS)
 endforeach()

@@ -6,11 +6,7 @@ set(_hc_dir "${CMAKE_CURRENT_SOURCE_DIR}/hardcases")
 # ts_test(<ctest name> <driver> <case> <ranks> <timeout s>)
 function(ts_test name driver case nprocs timeout)
   string(REPLACE ":" "_" work "${name}")
-  add_test(NAME "liggghts.${name}"
-           COMMAND "${Python3_EXECUTABLE}" "${driver}" "${case}"
-                   --exe "${LIGGGHTS_EXE}" --mpiexec "${MPIEXEC_EXECUTABLE}"
-                   --workdir "${_workroot}/${work}")
-  set_tests_properties("liggghts.${name}" PROPERTIES LABELS liggghts TIMEOUT ${timeout} PROCESSORS ${nprocs})
+  lg_driver_test("liggghts.${name}" "${driver}" "${case}" "${work}" ${timeout} ${nprocs})
 endfunction()
 
 foreach(case damped elastic rollback rollback_periodic vimpact)

@@ -6,12 +6,6 @@ foreach(case collide floor edge insert ranks restart bad hopper)
   if(case MATCHES "^(ranks|restart|hopper|insert)$")
     set(_np 2)
   endif()
-  add_test(NAME liggghts.trimesh.${case}
-           COMMAND "${Python3_EXECUTABLE}" "${CMAKE_CURRENT_SOURCE_DIR}/trimesh_check.py" ${case}
-                   --exe "${LIGGGHTS_EXE}"
-                   --mpiexec "${MPIEXEC_EXECUTABLE}"
-                   "--mpiexec-flags=${SPACETREE_MPIEXEC_PREFLAGS}"
-                   --workdir "${_workroot}/trimesh_${case}")
-  set_tests_properties(liggghts.trimesh.${case} PROPERTIES
-                       LABELS liggghts TIMEOUT 180 PROCESSORS ${_np})
+  lg_driver_test(liggghts.trimesh.${case} "${CMAKE_CURRENT_SOURCE_DIR}/trimesh_check.py" ${case}
+                 trimesh_${case} 180 ${_np} MPI_FLAGS)
 endforeach()
