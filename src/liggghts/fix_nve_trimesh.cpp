@@ -84,7 +84,9 @@ void FixNVETrimesh::reset_dt()
   dtf = 0.5 * update->dt * force->ftm2v;
 }
 
-void FixNVETrimesh::initial_integrate(int)
+/* One half kick of every moving body of the group, then (first half of the step) the drift. */
+
+void FixNVETrimesh::kick_and_drift(bool drift)
 {
   double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega;
   double **torque = atom->torque;
@@ -100,29 +102,19 @@ void FixNVETrimesh::initial_integrate(int)
     RigidBody b = load(*tt,i,x,v,rmass,quat,angmom);
     b.kick(Eigen::Vector3d(f[i][0],f[i][1],f[i][2]),
            Eigen::Vector3d(torque[i][0],torque[i][1],torque[i][2]),dtf);
-    b.drift(dtv);
+    if (drift) b.drift(dtv);
     store(b,i,x,v,omega,quat,angmom);
   }
 }
 
+void FixNVETrimesh::initial_integrate(int)
+{
+  kick_and_drift(true);
+}
+
 void FixNVETrimesh::final_integrate()
 {
-  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega;
-  double **torque = atom->torque;
-  double *rmass = atom->rmass;
-  int *mask = atom->mask, *type = atom->type;
-  double **quat = templ->state()->quat, **angmom = templ->state()->angmom;
-  const int nlocal = atom->nlocal;
-
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const TrimeshTypeTemplate *tt = templ->type_template(type[i]);
-    if (!tt || tt->fixed) continue;
-    RigidBody b = load(*tt,i,x,v,rmass,quat,angmom);
-    b.kick(Eigen::Vector3d(f[i][0],f[i][1],f[i][2]),
-           Eigen::Vector3d(torque[i][0],torque[i][1],torque[i][2]),dtf);
-    store(b,i,x,v,omega,quat,angmom);
-  }
+  kick_and_drift(false);
 }
 
 double FixNVETrimesh::compute_scalar()

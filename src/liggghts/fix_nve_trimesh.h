@@ -33,6 +33,8 @@ class FixNVETrimesh : public Fix {
   double compute_scalar();   // kinetic energy (translation + rotation) of the group's bodies
 
  private:
+  void kick_and_drift(bool drift);
+
   double dtv, dtf;
   class FixTrimeshTemplate *templ;
 };
