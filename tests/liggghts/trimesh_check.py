@@ -29,6 +29,8 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "inputs", "hopper"))
+from make_hopper import write_stl  # noqa: E402  (one ASCII STL writer for decks and tests)
 OK = True
 
 
@@ -36,17 +38,6 @@ def check(cond, what):
     global OK
     print(("PASS " if cond else "FAIL ") + what, flush=True)
     OK = OK and bool(cond)
-
-
-def write_stl(path, tris):
-    with open(path, "w") as f:
-        f.write("solid s\n")
-        for t in tris:
-            f.write(" facet normal 0 0 0\n  outer loop\n")
-            for v in t:
-                f.write("   vertex %.17g %.17g %.17g\n" % tuple(v))
-            f.write("  endloop\n endfacet\n")
-        f.write("endsolid s\n")
 
 
 def box_triangles(lo, hi):
