@@ -84,8 +84,8 @@ constexpr double kDirectionTolerance = 1e-9;
 // Slope (sine) above which a neighbour triangle is taken to descend towards the other body.
 constexpr double kFeatureTolerance = 1e-7;
 
-// Shapes with at least this many triangles are pruned through their TriangleBvh (below it the
-// loop over all triangles is as fast).
+// Shapes with at least this many triangles are pruned through their TriangleBvh, smaller ones
+// by the loop over all triangles (a choice, not tuned; the result is the same either way).
 constexpr std::size_t kTriangleIndexMinimum = 64;
 
 struct MeshContactOptions {
