@@ -162,21 +162,48 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
   }
 
   // Triangles of each body whose bounding sphere reaches the other body's bounding sphere.
+  // With an index: its candidates (a superset), ascending, through the same test as the loop
+  // over all triangles. The second body's query point is the first's centre in the second's
+  // frame, -rotation^T shift (rotation orthogonal to rounding; else the plain loop).
+  const auto candidatesOf = [&](const geometry::RigidShape& shape, const Vector3d& q,
+                                double radius) -> const std::vector<int>* {
+    if (!options_.triangleIndex || shape.triangleCount() < kTriangleIndexMinimum ||
+        shape.triangleIndex.size() != shape.triangleCount())
+      return nullptr;
+    candidates_.clear();
+    shape.triangleIndex.forEachCandidate(q, radius, [&](int i) { candidates_.push_back(i); });
+    std::sort(candidates_.begin(), candidates_.end());
+    return &candidates_;
+  };
+  const auto forEachTriangle = [&](const geometry::RigidShape& shape,
+                                   const std::vector<int>* candidates, auto&& body) {
+    if (candidates)
+      for (int i : *candidates) body(std::size_t(i));
+    else
+      for (std::size_t i = 0; i < shape.triangleCount(); ++i) body(i);
+  };
   nearFirst_.clear();
   nearSecond_.clear();
-  for (std::size_t i = 0; i < first.triangleCount(); ++i) {
+  forEachTriangle(first, candidatesOf(first, shift, second.boundingRadius + contactDistance),
+                  [&](std::size_t i) {
     const double reach = first.triangleRadii[i] + second.boundingRadius + contactDistance;
     if ((first.triangleCentres[i] - shift).squaredNorm() < reach * reach) nearFirst_.push_back(int(i));
-  }
+  });
   secondCentres_.clear();
-  for (std::size_t j = 0; j < second.triangleCount(); ++j) {
+  const bool orthogonal =
+      (rotation.transpose() * rotation - Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-12;
+  const std::vector<int>* secondCandidates =
+      orthogonal ? candidatesOf(second, Vector3d(-(rotation.transpose() * shift)),
+                                first.boundingRadius + contactDistance)
+                 : nullptr;
+  forEachTriangle(second, secondCandidates, [&](std::size_t j) {
     const Vector3d centre = rotation * second.triangleCentres[j] + shift;
     const double reach = second.triangleRadii[j] + first.boundingRadius + contactDistance;
     if (centre.squaredNorm() < reach * reach) {
       nearSecond_.push_back(int(j));
       secondCentres_.push_back(centre);
     }
-  }
+  });
   secondTriangles_.clear();
   for (int j : nearSecond_) {
     const Triangle& t = second.bodyTriangles[std::size_t(j)];

@@ -24,7 +24,11 @@
 // than 2 eps: no contact; (2) optional approach precheck hook (e.g. bodies separating fast
 // enough to stay apart) may skip the pair; (3) triangle pruning by bounding spheres: a triangle
 // of one body is kept only if its sphere reaches within 2 eps of the other body's bounding
-// sphere, and a pair of kept triangles only if their spheres are within 2 eps; (4) the
+// sphere, and a pair of kept triangles only if their spheres are within 2 eps (for a shape of
+// at least kTriangleIndexMinimum triangles the candidates come from its TriangleBvh, queried
+// with the other body's bounding sphere in this shape's frame, and pass the same test as in
+// the loop over all triangles, in ascending order: the same set, the same contacts, bit for
+// bit); (4) the
 // surviving triangle pairs go to the chosen distance method in one batch (Exact:
 // triangleDistance; Penalty: the batched penalty-Newton kernel, uncertified; Hybrid: penalty
 // with certified fallback, contact decisions identical to Exact's); (5) contacts (d < 2 eps);
@@ -80,6 +84,10 @@ constexpr double kDirectionTolerance = 1e-9;
 // Slope (sine) above which a neighbour triangle is taken to descend towards the other body.
 constexpr double kFeatureTolerance = 1e-7;
 
+// Shapes with at least this many triangles are pruned through their TriangleBvh, smaller ones
+// by the loop over all triangles (a choice, not tuned; the result is the same either way).
+constexpr std::size_t kTriangleIndexMinimum = 64;
+
 struct MeshContactOptions {
   double epsilon = 0.0;  // halo depth; contact when the triangle distance < 2 epsilon
   TriangleDistanceMethod method = TriangleDistanceMethod::Hybrid;
@@ -87,6 +95,9 @@ struct MeshContactOptions {
   bool deduplicate = true;
   bool localMinimaOnly = true;     // drop contacts that are not local distance minima (5b)
   double mergeNormalCosine = 0.9;  // "reasonably close normals": within about 25 degrees
+  // Prune through the shapes' TriangleBvh (step 3); false: loop over all triangles (the
+  // reference the index is tested against; same contacts either way).
+  bool triangleIndex = true;
   // Optional hook after the bounding-sphere check: gets both poses and the gap between the
   // bounding spheres (centre distance - radii, may be negative); return false to skip the pair.
   // Only pairs that cannot have a contact now may be skipped: a pair in halo contact that is
@@ -136,7 +147,7 @@ class MeshContactFinder {
 
  private:
   MeshContactOptions options_;
-  std::vector<int> nearFirst_, nearSecond_;
+  std::vector<int> nearFirst_, nearSecond_, candidates_;
   std::vector<Eigen::Vector3d> secondCentres_;
   std::vector<geometry::Triangle> secondTriangles_;
   std::vector<geometry::Triangle> pairFirst_, pairSecond_;

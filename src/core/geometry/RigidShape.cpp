@@ -36,6 +36,7 @@ RigidShape RigidShape::fromMesh(const TriangleMesh& mesh) {
     shape.triangleRadii.push_back(std::max({(t[0] - centre).norm(), (t[1] - centre).norm(),
                                             (t[2] - centre).norm()}));
   }
+  shape.triangleIndex = TriangleBvh(shape.triangleCentres, shape.triangleRadii);
   // Adjacency: directed edge (a, b) -> apex of its triangle; the neighbour across (a, b) of
   // a triangle is the triangle with the directed edge (b, a).
   std::map<std::pair<int, int>, int> apexOfDirectedEdge;

@@ -15,6 +15,7 @@
 
 #include "geometry/MassProperties.h"
 #include "geometry/Triangle.h"
+#include "geometry/TriangleBvh.h"
 #include "geometry/TriangleMesh.h"
 
 namespace spacetree::geometry {
@@ -26,6 +27,9 @@ struct RigidShape {
   // triangle-pair pruning of the contact search.
   std::vector<Eigen::Vector3d> triangleCentres;
   std::vector<double> triangleRadii;
+  // Hierarchy over those spheres: the contact search finds the triangles near the other body
+  // in O(log n + k) (TriangleBvh.h).
+  TriangleBvh triangleIndex;
 
   // Adjacency (closed manifold mesh): edgeApex[t][k] is the vertex opposite edge
   // (v_k, v_{k+1}) of triangle t in the neighbouring triangle across that edge (-1 if none);
