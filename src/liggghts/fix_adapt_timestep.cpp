@@ -9,8 +9,10 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "compute.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_property_atom.h"
 #include "fix_wall_gran.h"
 #include "force.h"
 #include "granular_list_copy.h"
@@ -40,7 +42,7 @@ bool yes_no(Error *error, const char *keyword, const char *value)
 
 FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), dtmin_set(false), dtmax_set(false), dtmax_captured(false), veto_on(true),
-  rollback_on(false), safety(0.8), eps(0.0), list(NULL), history(NULL),
+  rollback_on(false), safety(0.8), eps(0.0), list(NULL), history(NULL), wall_values(0),
   vetoed_steps(0), floored_steps(0), critical_last(0), rollbacks(0), rollbacks_failed(0),
   rollbacks_rebuilt(0),
   overlap_now(0), overlap_peak(0), contacts_now(0), contact_speed(0), warned_floor(false), warned_exhausted(false),
@@ -206,6 +208,36 @@ void FixAdaptTimestep::init()
       if (modify->fix[i]->time_depend && modify->fix[i] != this)
         error->all(FLERR,"Fix adapt/timestep rollback cannot be combined with another fix that "
                    "changes the time step");
+    find_wall_histories();
+  }
+}
+
+/* Primitive walls keep their tangential history in a fix property/atom named history_<wall-ID>
+   (created in FixWallGran::post_create); it is part of the state a rollback restores.
+   Mesh walls keep theirs in per-atom contact lists that this fix cannot restore: warned. */
+
+void FixAdaptTimestep::find_wall_histories()
+{
+  wall_histories.clear();
+  wall_values = 0;
+  for (int f = 0; f < modify->nfix; f++) {
+    if (strcmp(modify->fix[f]->style,"wall/gran") != 0) continue;
+    FixWallGran *wall = static_cast<FixWallGran*>(modify->fix[f]);
+    if (wall->dnum() <= 0) continue;
+    if (wall->is_mesh_wall()) {
+      if (comm->me == 0)
+        error->warning(FLERR,"Fix adapt/timestep rollback: the tangential history of mesh wall "
+                       "(fix wall/gran mesh) is not restored by a rollback; use a model without "
+                       "tangential history on that wall or accept one extra increment per rollback");
+      continue;
+    }
+    const std::string name = std::string("history_") + wall->id;
+    const int ifix = modify->find_fix(name.c_str());
+    if (ifix < 0) continue;   // created in the wall's post_create; absent before the first run
+    FixPropertyAtom *hist = static_cast<FixPropertyAtom*>(modify->fix[ifix]);
+    if (!hist->array_atom) continue;   // vector style: one row of get_nvalues() per atom
+    wall_histories.push_back(hist);
+    wall_values += hist->get_nvalues();
   }
 }
 
@@ -506,13 +538,17 @@ void FixAdaptTimestep::save_state()
       s_f[3*i+k] = atom->f[i][k];
       s_torque[3*i+k] = atom->torque[i][k];
     }
+  s_wall.resize(size_t(wall_values)*nlocal);
+  for (int i = 0, o = 0; i < nlocal; i++)
+    for (FixPropertyAtom *hist : wall_histories)
+      for (int k = 0; k < hist->get_nvalues(); k++) s_wall[o++] = hist->array_atom[i][k];
 }
 
 bool FixAdaptTimestep::restore_state()
 {
   const int nlocal = atom->nlocal;
   const bool rebuilt = neighbor->lastcall > saved_step;
-  const int R = 17;   // record: tag, image, x, v, omega, f, torque
+  const int R = 17 + wall_values;   // record: tag, image, x, v, omega, f, torque, wall histories
   auto record = [&](int k, double *r) {
     r[0] = s_tag[k];
     r[1] = s_image[k];
@@ -523,6 +559,7 @@ bool FixAdaptTimestep::restore_state()
       r[11+d] = s_f[3*k+d];
       r[14+d] = s_torque[3*k+d];
     }
+    for (int w = 0; w < wall_values; w++) r[17+w] = s_wall[size_t(wall_values)*k + w];
   };
   std::vector<double> mine(size_t(R)*nsaved), shipped, received;
   for (int k = 0; k < nsaved; k++) record(k,&mine[size_t(R)*k]);
@@ -582,6 +619,9 @@ bool FixAdaptTimestep::restore_state()
       atom->f[i][d] = r[11+d];
       atom->torque[i][d] = r[14+d];
     }
+    int w = 17;
+    for (FixPropertyAtom *hist : wall_histories)
+      for (int k = 0; k < hist->get_nvalues(); k++) hist->array_atom[i][k] = r[w++];
   }
   comm->forward_comm();   // ghosts take the restored positions and velocities
   return true;
@@ -647,10 +687,23 @@ void FixAdaptTimestep::redo_step()
     memset(&atom->f[0][0],0,3*nall*sizeof(double));
     if (atom->torque_flag) memset(&atom->torque[0][0],0,3*nall*sizeof(double));
   }
-  if (modify->n_pre_force) modify->pre_force(0);
-  force->pair->compute(0,0);
+  // energy and virial as Integrate::ev_set asks for them on this step, so that thermo output of
+  // a redone step (pressure, pe) reports the accepted step, not the rejected one
+  int eflag = 0, vflag = 0;
+  const int virial_style = force->newton_pair ? 2 : 1;
+  for (int i = 0; i < modify->ncompute; i++) {
+    Compute *c = modify->compute[i];
+    if (!(c->peflag || c->peatomflag || c->pressflag || c->pressatomflag)) continue;
+    if (!c->matchstep(update->ntimestep)) continue;
+    if (c->peflag) eflag |= 1;
+    if (c->peatomflag) eflag |= 2;
+    if (c->pressflag) vflag |= virial_style;
+    if (c->pressatomflag) vflag |= 4;
+  }
+  if (modify->n_pre_force) modify->pre_force(vflag);
+  force->pair->compute(eflag,vflag);
   if (force->newton) comm->reverse_comm();
-  if (modify->n_post_force) modify->post_force(0);
+  if (modify->n_post_force) modify->post_force(vflag);
   if (modify->n_pre_final_integrate) modify->pre_final_integrate();
   modify->final_integrate();
   redoing = false;

@@ -81,6 +81,12 @@ class FixAdaptTimestep : public Fix {
   std::vector<int> s_tag;
   std::vector<double> s_x, s_v, s_omega, s_f, s_torque;
   std::vector<tagint> s_image;   // atom->image is a tagint in LIGGGHTS 3.8
+  // tangential history of primitive walls (fix wall/gran ... primitive with a history model):
+  // per-atom fix property/atom "history_<wall-ID>", saved and restored with the atoms
+  std::vector<class FixPropertyAtom*> wall_histories;
+  int wall_values;              // sum of their values per atom
+  std::vector<double> s_wall;
+  void find_wall_histories();
   std::vector<int> h_flag;
   std::vector<double> h_value;
   int h_inum;

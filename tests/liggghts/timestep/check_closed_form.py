@@ -15,6 +15,10 @@ CASE
                 counted, and the restitution is still within 1 %.
   rollback_periodic[:NP] the rollback case across a periodic boundary (atom wrapped and, on 2
                 ranks, handed to another rank in the undone step) equals the non-periodic run.
+  rollback_tally[:NP] what a redone step leaves behind: the virial of the accepted step (compute
+                pressure equals kn*delta*d/V at every contact step, rolled back ones included),
+                and a primitive wall's tangential history restored before the redo (deck
+                in.wall_rollback: after the first contact step it is vx*dt of the redone step).
   vimpact[:NP]  e = 1 with the state-dependent contact ceiling (vimpact = closing speed): no step in
                 contact exceeds dtcontact, the contact speed f_ID[11] stays at 2 m/s, energy kept.
   control       a fixed coarse step (no fix) breaks the 1 % restitution bound: the checks
@@ -196,6 +200,54 @@ def main():
             worst = max(worst, abs((r1["t"][k] - r1["t"][k - 1]) - used) / used)
         check(worst <= 1e-9, "time advances by the redone step's dt (worst relative mismatch %.2e)" % worst)
         check(len(r1["crossings"]) >= 1, "the collision happened")
+    elif case == "rollback_tally":
+        # (a) e = 1, the coarse entry of the rollback case: compute pressure (virial part) against
+        # the spring force of the overlap the thermo shows, kn * delta * d / V along x
+        h = closed_form(1.0)
+        eps = 1.5 * h["peak"]
+        base = ("fix dtv all adapt/timestep creep 1.1 dtmax 1e-3 dtmin 1e-9 eps %.6g veto no rollback yes "
+                "penetration 0.9" % eps)
+        t = run("rollback_virial", 1.0, base, 150, x0=0.0132, skin=0.006, table=True,
+                extra="c_pv[1] f_dtv[5]", extrafix="compute pv all pressure thermo_temp virial")
+        check(t is not None, "rollback run with compute pressure finished on %d rank(s)" % nprocs)
+        if t is None:
+            return 1
+        names, rows = t
+        gap, pxx, rb = (lg.column(names, rows, c) for c in ("v_gap", "c_pv[1]", "f_dtv[5]"))
+        volume = 6.0 * 0.04 * 0.04
+        worst, contact_steps, redone = 0.0, 0, 0
+        for k in range(1, len(rows)):
+            if gap[k] >= 0.0:
+                continue
+            contact_steps += 1
+            redone += rb[k] > rb[k - 1]
+            expect = h["kn"] * (-gap[k]) * (D + gap[k]) / volume
+            worst = max(worst, abs(pxx[k] - expect) / expect)
+        print("  %d contact steps, %d of them redone; worst relative virial mismatch %.2e"
+              % (contact_steps, redone, worst))
+        check(contact_steps >= 3 and redone >= 1, "the contact was stepped and at least one step redone")
+        check(worst <= 1e-9, "the pressure of every contact step (redone ones included) is that of the "
+                             "accepted step")
+        # (b) the wall's tangential history: the redone first contact step must not keep the
+        # rejected step's increment (that would make it (dt_rejected + dt_redo) * vx)
+        rc, out, log = lg.run_deck(a.exe, os.path.join(HERE, "in.wall_rollback"), a.workdir, "wall_rollback",
+                                   {"procs": procs}, nprocs=nprocs, mpiexec=a.mpiexec)
+        check(rc == 0, "wall rollback deck finished")
+        if rc != 0:
+            print(out[-3000:])
+            return 1
+        names, rows = lg.thermo(log)
+        t_, gap, vx, sx, rb = (lg.column(names, rows, c) for c in ("Time", "v_gap", "v_vx", "v_sx", "f_dtv[5]"))
+        first = next((k for k in range(1, len(rows)) if gap[k] < 0.0), None)
+        check(first is not None, "the sphere reached the wall")
+        if first is None:
+            return 1
+        used = t_[first] - t_[first - 1]
+        ratio = sx[first] / (vx[first - 1] * used)
+        print("  first contact step %d: %d rollback(s), dt %.6g, history %.6g = %.9f * vx*dt"
+              % (rows[first][0], rb[first] - rb[first - 1], used, sx[first], ratio))
+        check(rb[first] > rb[first - 1], "the first contact step was rolled back")
+        check(abs(ratio - 1.0) <= 1e-9, "the wall history after the redo is the redone step's vx*dt alone")
     elif case == "rollback_periodic":
         # the rollback case across the periodic boundary x = +-3 with a list rebuild in every step:
         # the left sphere crosses the boundary in the rejected step (wrapped, and on 2 ranks handed
