@@ -12,6 +12,8 @@
 #include "compute.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_mesh_surface.h"
+#include "fix_neighlist_mesh.h"
 #include "fix_property_atom.h"
 #include "fix_wall_gran.h"
 #include "force.h"
@@ -22,6 +24,7 @@
 #include "neighbor.h"
 #include "pair_gran.h"
 #include "primitive_wall.h"
+#include "tri_mesh.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -317,47 +320,82 @@ FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto 
       }
     }
   }
-  // primitive walls (fix wall/gran ... primitive): each local particle against the wall's
-  // closest point, treated as a sphere of radius 0 at rest (moving primitives: overlap only)
+  // walls: each local particle against the wall's closest point, treated as a sphere of radius 0
+  // at rest; a moving wall only reports its overlaps (its speed is not known here)
   {
     double **x = atom->x;
     double **v = atom->v;
     double *radius = atom->radius;
     int *mask = atom->mask;
+    const int nlocal = atom->nlocal;
     const double dt_test = policy.creep*update->dt;
     const double rest[3] = {0.0,0.0,0.0};
+    // gap = distance from the particle surface to the wall (< 0: overlap), delta = centre to
+    // the wall's closest point
+    auto wall_contact = [&](int i, double gap, const double *delta, bool moving) {
+      const double dist = std::sqrt(delta[0]*delta[0] + delta[1]*delta[1] + delta[2]*delta[2]);
+      if (gap < 0.0) {
+        local[0] = std::max(local[0],-gap);
+        local[1] += 1.0;
+        if (speeds && dist > 0.0) {   // the particle's speed towards the wall
+          const double vn = (v[i][0]*delta[0] + v[i][1]*delta[1] + v[i][2]*delta[2])/dist;
+          const double an = (atom->f[i][0]*delta[0] + atom->f[i][1]*delta[1] + atom->f[i][2]*delta[2])
+                            /(dist*atom->rmass[i]);
+          local[4] = std::max(local[4],spacetree::contactSpeed(vn,an,policy.contactTime));
+        }
+        return;
+      }
+      if (moving) return;
+      if (policy.dtContact > 0.0 && dist > 0.0) {
+        const double approach = (v[i][0]*delta[0] + v[i][1]*delta[1] + v[i][2]*delta[2])/dist;
+        if (approach*dt_test > gap) {
+          local[3] = 1.0;
+          local[4] = std::max(local[4],approach);
+        }
+      }
+      const double xw[3] = {x[i][0]+delta[0],x[i][1]+delta[1],x[i][2]+delta[2]};
+      if (veto && veto->consider(x[i],v[i],radius[i],xw,rest,0.0,dt_test)) local[2] += 1.0;
+    };
+    std::vector<double> mesh_gap, mesh_delta;
     for (int f = 0; f < modify->nfix; f++) {
       if (strcmp(modify->fix[f]->style,"wall/gran") != 0) continue;
       FixWallGran *wall = static_cast<FixWallGran*>(modify->fix[f]);
-      if (wall->is_mesh_wall() || !wall->primitiveWall()) continue;
-      const bool moving = wall->is_moving();
-      for (int i = 0; i < atom->nlocal; i++) {
-        if (!(mask[i] & groupbit)) continue;
-        double delta[3];
-        const double gap = wall->primitiveWall()->resolveContact(x[i],radius[i],delta);
-        if (gap < 0.0) {
-          local[0] = std::max(local[0],-gap);
-          local[1] += 1.0;
-          const double dist = std::sqrt(delta[0]*delta[0] + delta[1]*delta[1] + delta[2]*delta[2]);
-          if (speeds && dist > 0.0) {   // moving primitives: the particle's speed towards the wall
-            const double vn = (v[i][0]*delta[0] + v[i][1]*delta[1] + v[i][2]*delta[2])/dist;
-            const double an = (atom->f[i][0]*delta[0] + atom->f[i][1]*delta[1] + atom->f[i][2]*delta[2])
-                              /(dist*atom->rmass[i]);
-            local[4] = std::max(local[4],spacetree::contactSpeed(vn,an,policy.contactTime));
-          }
-          continue;
+      if (!wall->is_mesh_wall()) {   // fix wall/gran ... primitive
+        if (!wall->primitiveWall()) continue;
+        for (int i = 0; i < nlocal; i++) {
+          if (!(mask[i] & groupbit)) continue;
+          double delta[3];
+          const double gap = wall->primitiveWall()->resolveContact(x[i],radius[i],delta);
+          wall_contact(i,gap,delta,wall->is_moving());
         }
-        if (moving) continue;
-        const double xw[3] = {x[i][0]+delta[0],x[i][1]+delta[1],x[i][2]+delta[2]};
-        const double dist = std::sqrt(delta[0]*delta[0] + delta[1]*delta[1] + delta[2]*delta[2]);
-        if (policy.dtContact > 0.0 && dist > 0.0) {
-          const double approach = (v[i][0]*delta[0] + v[i][1]*delta[1] + v[i][2]*delta[2])/dist;
-          if (approach*dt_test > gap) {
-            local[3] = 1.0;
-            local[4] = std::max(local[4],approach);
+        continue;
+      }
+      // fix wall/gran ... mesh: the particles of each triangle's contact list (fix
+      // neighlist/mesh, owned and ghost triangles), the closest triangle per particle and mesh
+      for (int m = 0; m < wall->n_meshes(); m++) {
+        FixMeshSurface *fm = wall->mesh_list()[m];
+        TriMesh *mesh = fm->triMesh();
+        FixNeighlistMesh *nl = fm->meshNeighlist();
+        if (!mesh || !nl) continue;
+        const bool moving = mesh->prop().getElementProperty<MultiVectorContainer<double,3,3> >("v") != NULL;
+        mesh_gap.assign(nlocal,std::numeric_limits<double>::infinity());
+        mesh_delta.resize(3*size_t(nlocal));
+        const int ntri = mesh->sizeLocal() + mesh->sizeGhost();
+        for (int t = 0; t < ntri; t++) {
+          const std::vector<int> &candidates = nl->get_contact_list(t);
+          for (const int i : candidates) {
+            if (i >= nlocal || !(mask[i] & groupbit)) continue;
+            double delta[3];
+            int barysign;
+            const double gap = mesh->resolveTriSphereContact(i,t,radius[i],x[i],delta,barysign);
+            if (gap < mesh_gap[i]) {
+              mesh_gap[i] = gap;
+              for (int d = 0; d < 3; d++) mesh_delta[3*size_t(i)+d] = delta[d];
+            }
           }
         }
-        if (veto && veto->consider(x[i],v[i],radius[i],xw,rest,0.0,dt_test)) local[2] += 1.0;
+        for (int i = 0; i < nlocal; i++)
+          if (mesh_gap[i] < 1e100) wall_contact(i,mesh_gap[i],&mesh_delta[3*size_t(i)],moving);
       }
     }
   }

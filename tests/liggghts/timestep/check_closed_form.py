@@ -19,6 +19,10 @@ CASE
                 pressure equals kn*delta*d/V at every contact step, rolled back ones included),
                 and a primitive wall's tangential history restored before the redo (deck
                 in.wall_rollback: after the first contact step it is vx*dt of the redone step).
+  mesh_wall[:NP] a sphere dropped on a two-triangle STL floor (fix wall/gran ... mesh) and on the
+                same floor as a primitive wall (deck in.wall_kinds): the fix sees the mesh
+                contact as it sees the primitive one (same steps, same trajectory), so the
+                contact is resolved by dtcontact and the restitution is within 1 % of e = 0.5.
   vimpact[:NP]  e = 1 with the state-dependent contact ceiling (vimpact = closing speed): no step in
                 contact exceeds dtcontact, the contact speed f_ID[11] stays at 2 m/s, energy kept.
   control       a fixed coarse step (no fix) breaks the 1 % restitution bound: the checks
@@ -248,6 +252,29 @@ def main():
               % (rows[first][0], rb[first] - rb[first - 1], used, sx[first], ratio))
         check(rb[first] > rb[first - 1], "the first contact step was rolled back")
         check(abs(ratio - 1.0) <= 1e-9, "the wall history after the redo is the redone step's vx*dt alone")
+    elif case == "mesh_wall":
+        deck = os.path.join(HERE, "in.wall_kinds")
+        tables = {}
+        for mesh in (0, 1):
+            rc, out, log = lg.run_deck(a.exe, deck, a.workdir, "wall_kinds_%d" % mesh,
+                                       {"mesh": mesh, "n": 180, "procs": procs, "meshdir": HERE},
+                                       nprocs=nprocs, mpiexec=a.mpiexec)
+            check(rc == 0, "%s floor run finished on %d rank(s)" % (("primitive", "mesh")[mesh], nprocs))
+            if rc != 0:
+                print(out[-3000:])
+                return 1
+            tables[mesh] = lg.thermo(log)
+        (names, prim), (_, mesh) = tables[0], tables[1]
+        worst = max(abs(x - y) / max(1e-12, abs(x)) for r, q in zip(prim, mesh) for x, y in zip(r, q))
+        gap, vz, dt = (lg.column(names, mesh, c) for c in ("v_gap", "v_vz", "Dt"))
+        contact = [k for k in range(len(gap)) if gap[k] < 0.0]
+        print("  %d steps each, worst relative difference %.2e; %d contact steps, peak overlap %.4e m, "
+              "rebound speed %.6f m/s" % (len(prim), worst, len(contact), -min(gap), vz[-1]))
+        check(len(prim) == len(mesh) and worst <= 1e-12, "mesh floor and primitive floor: same steps and trajectory")
+        check(len(contact) >= 20 and max(dt[k] for k in contact) <= 2.7e-5 * (1 + 1e-12),
+              "the mesh contact is stepped at dtcontact (%d steps)" % len(contact))
+        check(-min(gap) <= 5e-4, "overlap <= eps")
+        check(abs(vz[-1] - 0.5) <= 0.005, "restitution %.5f within 1 %% of 0.5" % vz[-1])
     elif case == "rollback_periodic":
         # the rollback case across the periodic boundary x = +-3 with a list rebuild in every step:
         # the left sphere crosses the boundary in the rejected step (wrapped, and on 2 ranks handed
