@@ -3,6 +3,7 @@
 
 #include "pair_trimesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -154,9 +155,25 @@ void PairTrimesh::settings(int narg, char **arg)
   model->tangential.reset();
   if (model->friction > 0.0 && model->sliding_damping > 0.0)
     model->tangential.reset(new dy::CoulombFriction(model->friction,model->sliding_damping));
-  model->search.reset(new TrimeshParallelContacts(model->contact,model->threads));
-  if (comm->me == 0 && screen)
-    fprintf(screen,"pair_style trimesh: triangle checks on %d thread(s)\n",model->search->threads());
+  // threads 0: TBB's default is every core this process may use; ranks that share a node share
+  // those cores, so each takes its part (no oversubscription with several ranks per node)
+  int threads = model->threads, on_node = 1, tbb_default = 0;
+  if (threads == 0) {
+    MPI_Comm node;
+    MPI_Comm_split_type(world,MPI_COMM_TYPE_SHARED,comm->me,MPI_INFO_NULL,&node);
+    MPI_Comm_size(node,&on_node);
+    MPI_Comm_free(&node);
+    tbb_default = TrimeshParallelContacts::defaultThreads();
+    if (on_node > 1) threads = std::max(1,tbb_default/on_node);
+  }
+  model->search.reset(new TrimeshParallelContacts(model->contact,threads));
+  if (comm->me == 0 && screen) {
+    if (model->threads == 0)
+      fprintf(screen,"pair_style trimesh: triangle checks on %d thread(s) per rank (threads 0: TBB "
+              "default %d shared by %d rank(s) on this node)\n",model->search->threads(),tbb_default,on_node);
+    else
+      fprintf(screen,"pair_style trimesh: triangle checks on %d thread(s)\n",model->search->threads());
+  }
 }
 
 void PairTrimesh::coeff(int narg, char **arg)

@@ -106,6 +106,11 @@ int TrimeshParallelContacts::threads() const
   return serial_ ? 1 : engine_->tasks.threads();
 }
 
+int TrimeshParallelContacts::defaultThreads()
+{
+  return tbb::info::default_concurrency();
+}
+
 std::size_t TrimeshParallelContacts::tasks() const
 {
   return engine_ ? engine_->tasks.statistics().tasks : 0;

@@ -48,6 +48,8 @@ class TrimeshParallelContacts {
   }
   // Threads that search (1 on the serial path) and tasks spawned by the last search.
   int threads() const;
+  // TBB's default concurrency for this process (the cores its affinity mask allows)
+  static int defaultThreads();
   std::size_t tasks() const;
 
  private:

@@ -5,7 +5,8 @@ Cases:
   threads   deck threads_hopper.in on 1 rank with threads 1, 2 and 4: every dump (positions,
             velocities, angular velocities at %.17g; surfaces = orientations) byte-identical,
             the run shows contacts and moving grains, the log names the thread count
-  ranks     the same deck on 2 ranks with threads 1 and 2: byte-identical dumps
+  ranks     the same deck on 2 ranks with threads 1, 2 and 0 (TBB's default shared by the ranks
+            of the node, as the log reports): byte-identical dumps
   bad       threads -1 and a non-integer stop with a clear ERROR naming the keyword
 """
 import argparse
@@ -92,7 +93,16 @@ def compare(a, np_, counts):
         if rc:
             print(out[-3000:])
             return
-        check("triangle checks on %d thread(s)" % t in out, "%s: pair style reports %d thread(s)" % (tag, t))
+        if t == 0:
+            # threads 0: TBB's default divided among the ranks of this node
+            m = re.search(r"triangle checks on (\d+) thread\(s\) per rank \(threads 0: TBB default (\d+) "
+                          r"shared by (\d+) rank", out)
+            check(m is not None and int(m.group(3)) == np_ and
+                  int(m.group(1)) == max(1, int(m.group(2)) // np_),
+                  "%s: threads 0 takes TBB's default shared by the %d rank(s) of the node (%s)"
+                  % (tag, np_, m and m.group(0)))
+        else:
+            check("triangle checks on %d thread(s)" % t in out, "%s: pair style reports %d thread(s)" % (tag, t))
         if ref is None:
             ref = tag
             rows = thermo(wd, tag)
@@ -137,7 +147,7 @@ if __name__ == "__main__":
     if a.case == "threads":
         compare(a, 1, [1, 2, 4])
     elif a.case == "ranks":
-        compare(a, 2, [1, 2])
+        compare(a, 2, [1, 2, 0])
     else:
         case_bad(a)
     sys.exit(0 if OK else 1)
