@@ -623,7 +623,20 @@ AdaptiveGridOptions AdaptiveGrid::serialisedOptions(const std::int64_t* words, s
 }
 
 AdaptiveGrid AdaptiveGrid::deserialise(const std::int64_t* words, std::size_t count) {
-  AdaptiveGrid grid(serialisedOptions(words, count));  // the constructor checks the options
+  return deserialise(words, count, serialisedOptions(words, count));
+}
+
+AdaptiveGrid AdaptiveGrid::deserialise(const std::int64_t* words, std::size_t count,
+                                       const AdaptiveGridOptions& options) {
+  const AdaptiveGridOptions stored = serialisedOptions(words, count);
+  if (options.type != stored.type)
+    throw std::invalid_argument(std::string("adaptive grid restart data: stored grid type ") +
+                                gridTypeName(stored.type) + ", wanted " + gridTypeName(options.type));
+  if (options.epsilon != stored.epsilon)
+    throw std::invalid_argument("adaptive grid restart data: stored for another halo (epsilon)");
+  if (words[kDepth] > options.maxLevel)
+    throw std::invalid_argument("adaptive grid restart data: stored grid is deeper than maxlevel");
+  AdaptiveGrid grid(options);  // the constructor checks the options
   const bool haveGeometry = words[kHaveGeometry] != 0;
   const std::int64_t depth = words[kDepth], regularDepth = words[kRegularDepth];
   if (depth < 0 || depth > grid.options_.maxLevel || regularDepth < 0 || regularDepth > depth)

@@ -91,6 +91,11 @@ class AdaptiveGrid {
   // Inverse of serialise(). Throws std::invalid_argument for data that serialise() cannot
   // have written (wrong magic/version, truncated, inconsistent sizes or levels).
   static AdaptiveGrid deserialise(const std::int64_t* words, std::size_t count);
+  // The stored state under other options: shock, threshold, padding and pairsFromCaller only
+  // steer later updates and may differ; the type and epsilon must equal the stored ones and
+  // the stored depth must not exceed options.maxLevel (else std::invalid_argument).
+  static AdaptiveGrid deserialise(const std::int64_t* words, std::size_t count,
+                                  const AdaptiveGridOptions& options);
   // The options stored in serialised data (same checks on the header as deserialise()).
   static AdaptiveGridOptions serialisedOptions(const std::int64_t* words, std::size_t count);
 
