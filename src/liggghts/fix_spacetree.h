@@ -3,6 +3,7 @@
 
      fix ID group spacetree grid regular|adaptive|reluctant [shock S] [threshold T]
                                  [maxlevel L] [padding P] [vtk N file]
+     (after read_restart `grid` may be left out: it comes from the restart file)
 
    At every neighbour-list build the builder (neigh_spacetree.cpp) asks this fix to update the
    grid over the rank's owned + ghost particles (refine, coarsen, re-host) and builds the tree

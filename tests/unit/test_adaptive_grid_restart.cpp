@@ -221,3 +221,37 @@ TEST(AdaptiveGridRestart, DamagedDataThrows) {
   w.push_back(0);  // trailing word
   bad(w);
 }
+
+TEST(AdaptiveGridRestart, RestoreUnderOtherOptions) {
+  // fix spacetree restated with another shock: the stored cells are kept, the new shock steers
+  // the next updates. Another type or halo, or a shallower maxlevel, cannot take the state.
+  Scene s = scene(4);
+  AdaptiveGrid grid(optionsFor(GridType::Reluctant, true));
+  Spacetree tree(SpacetreeOptions{0.001});
+  for (int n = 0; n < 5; ++n) {
+    step(grid, tree, s);
+    s.move(0.004);
+  }
+  const std::vector<std::int64_t> words = grid.serialise();
+  AdaptiveGridOptions other = optionsFor(GridType::Reluctant, true);
+  other.shock = 11;
+  other.padding = 0.5;
+  const AdaptiveGrid restored = AdaptiveGrid::deserialise(words.data(), words.size(), other);
+  EXPECT_EQ(restored.options().shock, 11);
+  EXPECT_EQ(restored.options().padding, 0.5);
+  EXPECT_EQ(leafCells(restored), leafCells(grid));
+  EXPECT_EQ(restored.statistics().geometryResets, grid.statistics().geometryResets);
+
+  AdaptiveGridOptions wrongType = optionsFor(GridType::Adaptive, true);
+  EXPECT_THROW(AdaptiveGrid::deserialise(words.data(), words.size(), wrongType), std::invalid_argument);
+  AdaptiveGridOptions wrongHalo = optionsFor(GridType::Reluctant, true);
+  wrongHalo.epsilon = 0.002;
+  EXPECT_THROW(AdaptiveGrid::deserialise(words.data(), words.size(), wrongHalo), std::invalid_argument);
+  AdaptiveGridOptions shallow = optionsFor(GridType::Reluctant, true);
+  shallow.maxLevel = 1;
+  ASSERT_GT(grid.geometry().depth, 1);
+  EXPECT_THROW(AdaptiveGrid::deserialise(words.data(), words.size(), shallow), std::invalid_argument);
+  AdaptiveGridOptions badPair = optionsFor(GridType::Reluctant, true);
+  badPair.coarseningThreshold = badPair.shock;
+  EXPECT_THROW(AdaptiveGrid::deserialise(words.data(), words.size(), badPair), std::invalid_argument);
+}
