@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace spacetree {
 
@@ -518,6 +520,168 @@ void AdaptiveGrid::collectStatistics() {
     ++stats_.levels[h].realParticles;
     stats_.deepestLevel = std::max(stats_.deepestLevel, h);
   }
+}
+
+namespace {
+// Layout of serialise(): header words, then per level the refined cells, then per level the
+// heat markers (key, value pairs).
+constexpr std::int64_t kSerialMagic = 0x53544147;  // "STAG"
+constexpr std::int64_t kSerialVersion = 1;
+enum SerialHeader {
+  kMagic, kVersion, kType, kEpsilon, kMaxLevel, kShock, kThreshold, kPadding, kPairsFromCaller,
+  kHaveGeometry, kOrigin0, kOrigin1, kOrigin2, kRootSize, kDepth, kRegularDepth, kResets,
+  kRefinements, kCoarsenings, kHeaderWords
+};
+
+std::int64_t wordOf(double d) {
+  std::int64_t w;
+  std::memcpy(&w, &d, sizeof w);
+  return w;
+}
+double doubleOf(std::int64_t w) {
+  double d;
+  std::memcpy(&d, &w, sizeof d);
+  return d;
+}
+
+[[noreturn]] void badData(const char* what) {
+  throw std::invalid_argument(std::string("adaptive grid restart data: ") + what);
+}
+
+// Sequential reader with bounds checks.
+struct WordReader {
+  const std::int64_t* words;
+  std::size_t count, at;
+  std::int64_t next() {
+    if (at >= count) badData("truncated");
+    return words[at++];
+  }
+  std::size_t length() {
+    const std::int64_t n = next();
+    if (n < 0 || std::size_t(n) > count - at) badData("truncated or bad length");
+    return std::size_t(n);
+  }
+};
+}  // namespace
+
+std::vector<std::int64_t> AdaptiveGrid::serialise() const {
+  std::vector<std::int64_t> w(kHeaderWords, 0);
+  w[kMagic] = kSerialMagic;
+  w[kVersion] = kSerialVersion;
+  w[kType] = std::int64_t(options_.type);
+  w[kEpsilon] = wordOf(options_.epsilon);
+  w[kMaxLevel] = options_.maxLevel;
+  w[kShock] = options_.shock;
+  w[kThreshold] = options_.coarseningThreshold;
+  w[kPadding] = wordOf(options_.padding);
+  w[kPairsFromCaller] = options_.pairsFromCaller ? 1 : 0;
+  w[kHaveGeometry] = haveGeometry_ ? 1 : 0;
+  for (int d = 0; d < 3; ++d) w[kOrigin0 + d] = wordOf(geometry_.origin[d]);
+  w[kRootSize] = wordOf(geometry_.rootSize);
+  w[kDepth] = geometry_.depth;
+  w[kRegularDepth] = regularDepth_;
+  w[kResets] = std::int64_t(stats_.geometryResets);
+  w[kRefinements] = std::int64_t(stats_.refinements);
+  w[kCoarsenings] = std::int64_t(stats_.coarsenings);
+  w.push_back(std::int64_t(refined_.size()));
+  for (const CellSet& cells : refined_) {
+    w.push_back(std::int64_t(cells.keys.size()));
+    for (std::uint64_t k : cells.keys) w.push_back(std::int64_t(k));
+  }
+  w.push_back(std::int64_t(heat_.size()));
+  for (const Markers& markers : heat_) {
+    w.push_back(2 * std::int64_t(markers.keys.size()));  // words: (key, value) pairs
+    for (std::size_t s = 0; s < markers.keys.size(); ++s) {
+      w.push_back(std::int64_t(markers.keys[s]));
+      w.push_back(markers.values[s]);
+    }
+  }
+  return w;
+}
+
+AdaptiveGridOptions AdaptiveGrid::serialisedOptions(const std::int64_t* words, std::size_t count) {
+  if (!words || count < std::size_t(kHeaderWords)) badData("shorter than its header");
+  if (words[kMagic] != kSerialMagic) badData("not adaptive grid data (bad magic word)");
+  if (words[kVersion] != kSerialVersion) badData("unknown version");
+  AdaptiveGridOptions o;
+  const std::int64_t type = words[kType];
+  if (type != std::int64_t(GridType::Regular) && type != std::int64_t(GridType::Adaptive) &&
+      type != std::int64_t(GridType::Reluctant))
+    badData("unknown grid type");
+  o.type = GridType(type);
+  o.epsilon = doubleOf(words[kEpsilon]);
+  if (words[kMaxLevel] < 0 || words[kMaxLevel] > kMaxSpacetreeLevel) badData("bad maxlevel");
+  o.maxLevel = int(words[kMaxLevel]);
+  if (words[kShock] < 0 || words[kShock] > std::numeric_limits<int>::max() || words[kThreshold] < 0 ||
+      words[kThreshold] > std::numeric_limits<int>::max())
+    badData("bad shock or threshold");
+  o.shock = int(words[kShock]);
+  o.coarseningThreshold = int(words[kThreshold]);
+  o.padding = doubleOf(words[kPadding]);
+  o.pairsFromCaller = words[kPairsFromCaller] != 0;
+  return o;
+}
+
+AdaptiveGrid AdaptiveGrid::deserialise(const std::int64_t* words, std::size_t count) {
+  return deserialise(words, count, serialisedOptions(words, count));
+}
+
+AdaptiveGrid AdaptiveGrid::deserialise(const std::int64_t* words, std::size_t count,
+                                       const AdaptiveGridOptions& options) {
+  const AdaptiveGridOptions stored = serialisedOptions(words, count);
+  if (options.type != stored.type)
+    throw std::invalid_argument(std::string("adaptive grid restart data: stored grid type ") +
+                                gridTypeName(stored.type) + ", wanted " + gridTypeName(options.type));
+  if (options.epsilon != stored.epsilon)
+    throw std::invalid_argument("adaptive grid restart data: stored for another halo (epsilon)");
+  if (words[kDepth] > options.maxLevel)
+    throw std::invalid_argument("adaptive grid restart data: stored grid is deeper than maxlevel");
+  AdaptiveGrid grid(options);  // the constructor checks the options
+  const bool haveGeometry = words[kHaveGeometry] != 0;
+  const std::int64_t depth = words[kDepth], regularDepth = words[kRegularDepth];
+  if (depth < 0 || depth > grid.options_.maxLevel || regularDepth < 0 || regularDepth > depth)
+    badData("bad depth");
+  grid.haveGeometry_ = haveGeometry;
+  for (int d = 0; d < 3; ++d) grid.geometry_.origin[d] = doubleOf(words[kOrigin0 + d]);
+  grid.geometry_.rootSize = doubleOf(words[kRootSize]);
+  grid.geometry_.depth = int(depth);
+  if (haveGeometry && !(grid.geometry_.rootSize > 0.0 && std::isfinite(grid.geometry_.rootSize)))
+    badData("bad root cube");
+  grid.regularDepth_ = int(regularDepth);
+  if (words[kResets] < 0 || words[kRefinements] < 0 || words[kCoarsenings] < 0) badData("bad counters");
+  grid.stats_.geometryResets = std::uint64_t(words[kResets]);
+  grid.stats_.refinements = std::uint64_t(words[kRefinements]);
+  grid.stats_.coarsenings = std::uint64_t(words[kCoarsenings]);
+  WordReader in{words, count, std::size_t(kHeaderWords)};
+  // chooseGeometry() sizes both per-level lists depth + 1; before it they are empty.
+  const std::size_t levels = haveGeometry ? std::size_t(depth) + 1 : 0;
+  if (in.length() != levels) badData("refined cell levels do not match the depth");
+  grid.refined_.assign(levels, CellSet{});
+  for (std::size_t l = 0; l < levels; ++l) {
+    const std::size_t n = in.length();
+    CellSet& cells = grid.refined_[l];
+    cells.reset(n);
+    for (std::size_t s = 0; s < n; ++s) cells.insert(std::uint64_t(in.next()));
+    if (cells.size() != n) badData("duplicate refined cell");
+    if (n && l >= std::size_t(depth)) badData("refined cell on the finest level");
+  }
+  if (in.length() != levels) badData("heat marker levels do not match the depth");
+  grid.heat_.assign(levels, Markers{});
+  for (std::size_t l = 0; l < levels; ++l) {
+    const std::size_t n = in.length();
+    if (n % 2) badData("odd heat marker list");
+    Markers& markers = grid.heat_[l];
+    markers.reset(n / 2);
+    for (std::size_t s = 0; s < n / 2; ++s) {
+      const std::uint64_t k = std::uint64_t(in.next());
+      const std::int64_t value = in.next();
+      markers[k] = value;
+      if (markers.size() != s + 1) badData("duplicate heat marker");
+    }
+  }
+  if (in.at != count) badData("trailing words");
+  grid.collectStatistics();
+  return grid;
 }
 
 }  // namespace spacetree

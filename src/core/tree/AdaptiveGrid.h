@@ -14,6 +14,7 @@
 // are kept sparsely in one hash set per level.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -80,6 +81,23 @@ class AdaptiveGrid {
   std::uint64_t leafCellCount() const;
   // Non-hanging vertices per level (index = level); computed on request, not per update.
   std::vector<std::uint64_t> verticesPerLevel() const;
+
+  // Restart: everything the grid keeps between updates that changes later updates (options,
+  // cube, refined cells per level, reluctant heat markers, the cumulative reset count) as a
+  // flat word list; doubles are stored bit-exact, sets in their stored order, so a restored
+  // grid's next updates equal the original's. Per-particle hosts are not stored: they are
+  // recomputed by update(), which must come before the next buildSpacetree().
+  std::vector<std::int64_t> serialise() const;
+  // Inverse of serialise(). Throws std::invalid_argument for data that serialise() cannot
+  // have written (wrong magic/version, truncated, inconsistent sizes or levels).
+  static AdaptiveGrid deserialise(const std::int64_t* words, std::size_t count);
+  // The stored state under other options: shock, threshold, padding and pairsFromCaller only
+  // steer later updates and may differ; the type and epsilon must equal the stored ones and
+  // the stored depth must not exceed options.maxLevel (else std::invalid_argument).
+  static AdaptiveGrid deserialise(const std::int64_t* words, std::size_t count,
+                                  const AdaptiveGridOptions& options);
+  // The options stored in serialised data (same checks on the header as deserialise()).
+  static AdaptiveGridOptions serialisedOptions(const std::int64_t* words, std::size_t count);
 
  private:
   using CellSet = VertexKeySet;  // open addressing: look-ups dominate the update
