@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace spacetree {
 
@@ -174,6 +175,10 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
         ++e;
       }
       v.end = e;
+      v.maxRadius = 0.0;
+      for (std::int32_t q = v.begin; q < v.end; ++q) v.maxRadius = std::max(v.maxRadius, sr_[q]);
+      v.sortedByX = v.end - v.begin >= kSweepAndPruneMinParticles;
+      if (v.sortedByX) sortRangeByX(v.begin, v.end);
       level.vertices.push_back(v);
     }
     level.lookup.build(level.vertices);
@@ -202,6 +207,27 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
     bytes += level.vertices.capacity() * sizeof(Vertex) + level.lookup.memoryBytes() +
              level.neighbourhoods.memoryBytes();
   stats_.memoryBytes = bytes;
+}
+
+void Spacetree::sortRangeByX(std::int32_t begin, std::int32_t end) {
+  // A crowded vertex (a lifted cloud) keeps its particles ordered along x, so the sweep can
+  // prune its pairs by their x distance instead of testing all of them.
+  order_.resize(std::size_t(end - begin));
+  for (std::int32_t s = begin; s < end; ++s) order_[std::size_t(s - begin)] = s;
+  std::sort(order_.begin(), order_.end(), [&](std::int32_t a, std::int32_t b) {
+    return sx_[a] < sx_[b] || (sx_[a] == sx_[b] && a < b);
+  });
+  auto permute = [&](auto& values) {
+    scratchValues_.resize(order_.size());
+    for (std::size_t t = 0; t < order_.size(); ++t) scratchValues_[t] = double(values[order_[t]]);
+    for (std::size_t t = 0; t < order_.size(); ++t)
+      values[std::size_t(begin) + t] = static_cast<typename std::decay_t<decltype(values)>::value_type>(scratchValues_[t]);
+  };
+  permute(sx_);
+  permute(sy_);
+  permute(sz_);
+  permute(sr_);
+  permute(sortedId_);  // int32 through double: exact
 }
 
 void Spacetree::gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
