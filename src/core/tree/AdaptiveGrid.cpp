@@ -39,7 +39,7 @@ int AdaptiveGrid::finestFit(double required) const {
 }
 
 AdaptiveGrid::Index3 AdaptiveGrid::cellOf(int level, const double p[3]) const {
-  const double inv = 1.0 / meshSize(level);
+  const double inv = inverseMeshSize_[level];
   const std::int64_t last = cellsPerAxis(level) - 1;
   auto c = [&](int d) {
     return std::clamp(std::int64_t(std::floor((p[d] - geometry_.origin[d]) * inv)), std::int64_t(0), last);
@@ -49,7 +49,7 @@ AdaptiveGrid::Index3 AdaptiveGrid::cellOf(int level, const double p[3]) const {
 
 AdaptiveGrid::Index3 AdaptiveGrid::nearestVertex(int level, const double p[3]) const {
   // Same rounding as Spacetree::placeParticles, so both agree on the host vertex.
-  const double inv = 1.0 / meshSize(level);
+  const double inv = inverseMeshSize_[level];
   auto v = [&](int d) { return std::int64_t((p[d] - geometry_.origin[d]) * inv + 0.5); };
   return {v(0), v(1), v(2)};
 }
@@ -90,7 +90,8 @@ bool AdaptiveGrid::isRefinedAt(int level, const double p[3]) const {
 }
 
 int AdaptiveGrid::computeHost(const double p[3], int admissible) const {
-  int l = 0;
+  // Levels above the start-off grid are refined everywhere: no look-up needed there.
+  int l = std::max(0, std::min(regularDepth_, admissible));
   while (l < admissible) {
     const Index3 c = cellOf(l, p);
     if (!isRefined(l, c.i, c.j, c.k)) break;
@@ -105,7 +106,12 @@ int AdaptiveGrid::computeHost(const double p[3], int admissible) const {
 }
 
 void AdaptiveGrid::rehostAll(const double (*x)[3], int n) {
+  // Same positions (within one update, and refineForPairs after it) on an unchanged grid:
+  // the hosts are already those.
+  if (hostsCurrent_ && hostsGridVersion_ == gridVersion_) return;
   for (int i = 0; i < n; ++i) host_[i] = computeHost(x[i], admissible_[i]);
+  hostsCurrent_ = true;
+  hostsGridVersion_ = gridVersion_;
 }
 
 bool AdaptiveGrid::needsNewGeometry(const double (*x)[3], const double* radius, int n) const {
@@ -154,6 +160,9 @@ void AdaptiveGrid::chooseGeometry(const double (*x)[3], const double* radius, in
   const int depth = geometry_.depth;
   for (int d = 0; d < 3; ++d) geometry_.origin[d] = 0.5 * (lo[d] + hi[d]) - 0.5 * root;
   haveGeometry_ = true;
+  inverseMeshSize_.resize(std::size_t(depth) + 1);
+  for (int l = 0; l <= depth; ++l) inverseMeshSize_[l] = 1.0 / meshSize(l);
+  ++gridVersion_;
   refined_.assign(std::size_t(depth) + 1, CellSet{});
   for (CellSet& cells : refined_) cells.reset(0);
   heat_.assign(std::size_t(depth) + 1, Markers{});
@@ -173,6 +182,7 @@ bool AdaptiveGrid::refineCell(int level, std::int64_t i, std::int64_t j, std::in
         for (std::int64_t c = 3 * k; c <= 3 * k + 3; ++c)
           if (isHanging(level + 1, a, b, c)) created.push_back(key(a, b, c));
   refined_[level].insert(key(i, j, k));
+  ++gridVersion_;
   if (trackRefinements_) newRefined_.emplace_back(level, key(i, j, k));
   for (std::uint64_t v : created) {
     std::int64_t& h = heat_[level + 1][v];
@@ -191,6 +201,7 @@ bool AdaptiveGrid::refineAroundVertex(int level, const Index3& v) {
 }
 
 void AdaptiveGrid::refineNaively(const double (*x)[3], int n) {
+  hostsCurrent_ = false;  // hosts are set here, not by rehostAll
   // Refine the 2^d cells around the host vertex while a drop would sieve the particle to the
   // next finer level; those cells hold every cell its next nearest vertex needs, so each
   // round drops it by one level (the paper cascades within one top-down sweep, too).
@@ -395,6 +406,7 @@ void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
     for (std::uint64_t cellKey : refined_[l].keys)
       if (!blocked.contains(cellKey)) removals.push_back(cellKey);
     refined_[l].eraseAll(removals);
+    if (!removals.empty()) ++gridVersion_;
     stats_.coarsenings += removals.size();
   }
 }
@@ -419,6 +431,7 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
   incrementalValid_ = false;
   stats_.incremental = false;
   stats_.rehosted = std::uint64_t(n);
+  hostsCurrent_ = false;  // particles moved
   host_.assign(std::size_t(n), 0);
   admissible_.resize(std::size_t(n));
   if (n == 0) {
@@ -436,6 +449,7 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
   // Stored refinements now inside the everywhere-refined levels are redundant.
   for (int l = 0; l < regularDepth_ && l < int(refined_.size()); ++l)
     if (refined_[l].size()) refined_[l].reset(0);
+  ++gridVersion_;  // the start-off depth may have changed
 
   rehostAll(x, n);  // particles moved: drops and lifts on the current grid
   switch (options_.type) {
@@ -551,6 +565,7 @@ bool AdaptiveGrid::updateIncrementally(const double (*x)[3], const double* radiu
   coarsenAroundLostVertices();
   stats_.incremental = true;
   stats_.rehosted = moved_.size();
+  hostsCurrent_ = false;
   return true;
 }
 
@@ -597,6 +612,7 @@ void AdaptiveGrid::coarsenAroundLostVertices() {
     }
     if (removals.empty()) continue;
     refined_[m].eraseAll(removals);
+    ++gridVersion_;
     stats_.coarsenings += removals.size();
     if (m - 1 >= regularDepth_)
       for (std::uint64_t cellKey : removals) {  // the parent lost a refined child

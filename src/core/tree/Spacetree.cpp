@@ -178,7 +178,13 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
       v.maxRadius = 0.0;
       for (std::int32_t q = v.begin; q < v.end; ++q) v.maxRadius = std::max(v.maxRadius, sr_[q]);
       v.sortedByX = v.end - v.begin >= kSweepAndPruneMinParticles;
-      if (v.sortedByX) sortRangeByX(v.begin, v.end);
+      v.bigBegin = v.end;
+      v.maxSmallRadius = v.maxRadius;
+      if (v.sortedByX) {
+        v.bigBegin = sortRangeByX(v.begin, v.end);
+        v.maxSmallRadius = 0.0;
+        for (std::int32_t q = v.begin; q < v.bigBegin; ++q) v.maxSmallRadius = std::max(v.maxSmallRadius, sr_[q]);
+      }
       level.vertices.push_back(v);
     }
     level.lookup.build(level.vertices);
@@ -209,14 +215,22 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
   stats_.memoryBytes = bytes;
 }
 
-void Spacetree::sortRangeByX(std::int32_t begin, std::int32_t end) {
+std::int32_t Spacetree::sortRangeByX(std::int32_t begin, std::int32_t end) {
   // A crowded vertex (a lifted cloud) keeps its particles ordered along x, so the sweep can
-  // prune its pairs by their x distance instead of testing all of them.
-  order_.resize(std::size_t(end - begin));
+  // prune its pairs by their x distance instead of testing all of them. Particles much bigger
+  // than the vertex's median go last, unsorted: they would widen every pruning window.
+  const std::size_t count = std::size_t(end - begin);
+  scratchValues_.assign(sr_.begin() + begin, sr_.begin() + end);
+  std::nth_element(scratchValues_.begin(), scratchValues_.begin() + count / 2, scratchValues_.end());
+  const double bigRadius = kBigRadiusOverMedian * scratchValues_[count / 2];
+  order_.resize(count);
   for (std::int32_t s = begin; s < end; ++s) order_[std::size_t(s - begin)] = s;
-  std::sort(order_.begin(), order_.end(), [&](std::int32_t a, std::int32_t b) {
+  const auto bigFirst = std::stable_partition(order_.begin(), order_.end(),
+                                              [&](std::int32_t a) { return !(sr_[a] > bigRadius); });
+  std::sort(order_.begin(), bigFirst, [&](std::int32_t a, std::int32_t b) {
     return sx_[a] < sx_[b] || (sx_[a] == sx_[b] && a < b);
   });
+  const std::int32_t bigBegin = begin + std::int32_t(bigFirst - order_.begin());
   auto permute = [&](auto& values) {
     scratchValues_.resize(order_.size());
     for (std::size_t t = 0; t < order_.size(); ++t) scratchValues_[t] = double(values[order_[t]]);
@@ -228,6 +242,7 @@ void Spacetree::sortRangeByX(std::int32_t begin, std::int32_t end) {
   permute(sz_);
   permute(sr_);
   permute(sortedId_);  // int32 through double: exact
+  return bigBegin;
 }
 
 void Spacetree::gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,

@@ -94,12 +94,15 @@ class Spacetree {
     std::int32_t begin, end;  // range of hosted particles in the sorted arrays
     std::int32_t active;      // how many of them are active
     double maxRadius;         // of the hosted particles
-    bool sortedByX;           // crowded: the range is ordered by x (sweep and prune)
+    bool sortedByX;           // crowded: [begin, bigBegin) is ordered by x (sweep and prune)
+    std::int32_t bigBegin;    // crowded: [bigBegin, end) holds the much bigger ones, unsorted
+    double maxSmallRadius;    // of [begin, bigBegin)
   };
   // Vertices holding at least this many particles are ordered by x, and pairs of two such
   // vertices (or within one) are pruned by their x distance before the exact test. Regular
   // levels rarely reach it; coarse levels holding a lifted cloud (reluctant grid) do.
   static constexpr std::int32_t kSweepAndPruneMinParticles = 8;
+  static constexpr double kBigRadiusOverMedian = 4.0;
   struct Level {
     double meshSize = 0.0;
     std::vector<Vertex> vertices;         // sorted by key
@@ -129,7 +132,7 @@ class Spacetree {
   void clear(int n, int nActive);  // forget the last build
   void resetLevels(const std::array<double, 3>& origin, double rootSize, int depth);
   void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
-  void sortRangeByX(std::int32_t begin, std::int32_t end);
+  std::int32_t sortRangeByX(std::int32_t begin, std::int32_t end);  // returns bigBegin
   void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
                                    std::int64_t ak, std::vector<std::int32_t>& out) const;
   bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
@@ -198,12 +201,17 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
       // 1. Real particles of this vertex among themselves.
       const bool allActive = v.active == v.end - v.begin;  // no ghost: skip per-pair checks
       if (v.sortedByX) {
-        const double reach = (2.0 * v.maxRadius + halo) * pruneScale;
-        for (std::int32_t a = v.begin; a < v.end; ++a)
-          for (std::int32_t b = a + 1; b < v.end && sx_[b] - sx_[a] <= reach; ++b) {
+        const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
+        for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
+          for (std::int32_t b = a + 1; b < v.bigBegin && sx_[b] - sx_[a] <= reach; ++b) {
             if (allActive || isActive(a) || isActive(b)) onPair(a, b);
             ++candidatePairs;
           }
+        for (std::int32_t b = v.bigBegin; b < v.end; ++b)  // the big ones against all before them
+          for (std::int32_t a = v.begin; a < b; ++a)
+            if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+        candidatePairs += std::uint64_t(v.end - v.bigBegin) * (v.end - v.bigBegin - 1) / 2 +
+                          std::uint64_t(v.end - v.bigBegin) * (v.bigBegin - v.begin);
       } else {
         for (std::int32_t a = v.begin; a < v.end; ++a)
           for (std::int32_t b = a + 1; b < v.end; ++b)
@@ -225,17 +233,23 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
         if (v.active == 0 && nb.active == 0) continue;
         if (v.sortedByX && nb.sortedByX) {
           // Both ordered by x: a window of nb per particle of v (sweep and prune).
-          const double reach = (v.maxRadius + nb.maxRadius + halo) * pruneScale;
+          const double reach = (v.maxSmallRadius + nb.maxSmallRadius + halo) * pruneScale;
           const bool bothActive = allActive && nb.active == nb.end - nb.begin;
           std::int32_t start = nb.begin;
-          for (std::int32_t a = v.begin; a < v.end; ++a) {
+          for (std::int32_t a = v.begin; a < v.bigBegin; ++a) {
             const double lo = sx_[a] - reach, hi = sx_[a] + reach;
-            while (start < nb.end && sx_[start] < lo) ++start;
-            for (std::int32_t b = start; b < nb.end && sx_[b] <= hi; ++b) {
+            while (start < nb.bigBegin && sx_[start] < lo) ++start;
+            for (std::int32_t b = start; b < nb.bigBegin && sx_[b] <= hi; ++b) {
               if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
               ++candidatePairs;
             }
           }
+          // The big ones of either vertex against everything of the other, unpruned.
+          for (std::int32_t a = v.begin; a < v.end; ++a)
+            for (std::int32_t b = a < v.bigBegin ? nb.bigBegin : nb.begin; b < nb.end; ++b)
+              if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+          candidatePairs += std::uint64_t(v.bigBegin - v.begin) * (nb.end - nb.bigBegin) +
+                            std::uint64_t(v.end - v.bigBegin) * (nb.end - nb.begin);
           continue;
         }
         if (allActive || nb.active == nb.end - nb.begin) {
