@@ -34,7 +34,7 @@ double AdaptiveGrid::meshSize(int level) const {
 
 int AdaptiveGrid::finestFit(double required) const {
   int l = 0;
-  while (l < geometry_.depth && meshSize(l + 1) >= required) ++l;
+  while (l < geometry_.depth && meshSize_[std::size_t(l) + 1] >= required) ++l;
   return l;
 }
 
@@ -161,7 +161,11 @@ void AdaptiveGrid::chooseGeometry(const double (*x)[3], const double* radius, in
   for (int d = 0; d < 3; ++d) geometry_.origin[d] = 0.5 * (lo[d] + hi[d]) - 0.5 * root;
   haveGeometry_ = true;
   inverseMeshSize_.resize(std::size_t(depth) + 1);
-  for (int l = 0; l <= depth; ++l) inverseMeshSize_[l] = 1.0 / meshSize(l);
+  meshSize_.resize(std::size_t(depth) + 1);
+  for (int l = 0; l <= depth; ++l) {
+    meshSize_[l] = meshSize(l);
+    inverseMeshSize_[l] = 1.0 / meshSize(l);
+  }
   ++gridVersion_;
   refined_.assign(std::size_t(depth) + 1, CellSet{});
   for (CellSet& cells : refined_) cells.reset(0);

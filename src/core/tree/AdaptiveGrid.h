@@ -152,7 +152,7 @@ class AdaptiveGrid {
   std::vector<std::pair<int, std::uint64_t>> newRefined_;  // (level, cell) refined this update
   std::vector<int> moved_;
   std::vector<KeySet> candidates_;
-  std::vector<double> inverseMeshSize_;  // 1 / meshSize(level), per level of the cube
+  std::vector<double> meshSize_, inverseMeshSize_;  // meshSize(level) and 1 / it, per level
   // Grid changes (refinements, coarsenings, new cube) count up gridVersion_; rehostAll() is
   // skipped when the positions and the grid are those of its last run.
   std::uint64_t gridVersion_ = 0, hostsGridVersion_ = 0;

@@ -79,7 +79,12 @@ void Spacetree::resetLevels(const std::array<double, 3>& origin, double rootSize
 
 void Spacetree::clear(int n, int nActive) {
   nActive_ = nActive;
-  levels_.clear();
+  // Keep the levels' storage (vertex lists, look-up tables) from build to build: freeing and
+  // re-allocating it every step costs page faults comparable to the build itself.
+  for (Level& level : levels_) {
+    level.vertices.clear();
+    level.precomputedNeighbourhoods = false;
+  }
   stats_ = SpacetreeStatistics{};
   particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
   sx_.clear();
