@@ -370,3 +370,62 @@ TEST(AdaptiveGrid, AdaptiveCoarseningNeverMovesAParticle) {
   }
   EXPECT_GT(coarsenings, 0u);
 }
+
+namespace {
+
+// Leaf cells of every level, sorted (a grid is its set of leaves).
+std::vector<std::array<std::int64_t, 4>> leafCells(const AdaptiveGrid& grid) {
+  std::vector<std::array<std::int64_t, 4>> cells;
+  grid.forEachLeafCell([&](int l, std::int64_t i, std::int64_t j, std::int64_t k) { cells.push_back({l, i, j, k}); });
+  std::sort(cells.begin(), cells.end());
+  return cells;
+}
+
+}  // namespace
+
+TEST(AdaptiveGrid, IncrementalAdaptiveUpdateEqualsTheFullUpdateOverManyRandomSteps) {
+  // The incremental update re-hosts only moved particles and coarsens only around the
+  // vertices they left; it must end each step with the grid (leaf cells), host levels and
+  // refinement / coarsening counts of the full update, and the sweep must stay exact.
+  const double eps = 0.0004;
+  for (unsigned seed : {3u, 11u, 29u}) {
+    Scene s = polydisperse(400, 3, 0.004, 12.0, seed);
+    std::mt19937_64 rng(seed + 100);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    AdaptiveGridOptions options;
+    options.epsilon = eps;
+    AdaptiveGrid incremental(options);
+    options.incremental = false;
+    AdaptiveGrid full(options);
+    Spacetree tree(SpacetreeOptions{eps, spacetree::kMaxSpacetreeLevel});
+    int incrementalSteps = 0;
+    std::uint64_t rehosted = 0, coarsenings = 0;
+    for (int step = 0; step < 50; ++step) {
+      incremental.update(s.pos(), s.vel(), s.r.data(), s.size());
+      full.update(s.pos(), s.vel(), s.r.data(), s.size());
+      ASSERT_EQ(incremental.hostLevels(), full.hostLevels()) << "seed " << seed << " step " << step;
+      ASSERT_EQ(leafCells(incremental), leafCells(full)) << "seed " << seed << " step " << step;
+      ASSERT_EQ(incremental.statistics().refinements, full.statistics().refinements) << "step " << step;
+      ASSERT_EQ(incremental.statistics().coarsenings, full.statistics().coarsenings) << "step " << step;
+      ASSERT_EQ(incremental.statistics().cells, full.statistics().cells);
+      if (step % 10 == 0) {
+        ASSERT_EQ(gridPairs(incremental, tree, s), bruteForce(s, eps)) << "step " << step;
+      }
+      if (incremental.statistics().incremental) {
+        ++incrementalSteps;
+        rehosted += incremental.statistics().rehosted;
+        coarsenings += incremental.statistics().coarsenings;
+      }
+      // Small steps (a few particles change vertex), now and then a jump; one particle in
+      // fifty changes its radius every 15 steps (admissible level changes).
+      s.move(step % 7 == 3 ? 0.02 : 0.002);
+      for (int i = 0; i < s.size(); ++i)
+        for (int d = 0; d < 3; ++d) s.x[i][d] = std::clamp(s.x[i][d], 0.0, 1.0);
+      if (step % 15 == 14)
+        for (int i = 0; i < 400; i += 50) s.r[i] = 0.004 * (1.0 + 3.0 * u(rng));
+    }
+    EXPECT_GT(incrementalSteps, 30) << "seed " << seed;
+    EXPECT_LT(rehosted, std::uint64_t(incrementalSteps) * s.size());  // not everything re-hosted
+    EXPECT_GT(coarsenings, 0u);                                     // the incremental coarsening ran
+  }
+}

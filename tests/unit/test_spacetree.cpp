@@ -275,3 +275,47 @@ TEST(Spacetree, PairsWithinMatchBruteForceAndAreASubsetOfCandidates) {
     EXPECT_LE(std::sqrt(d2), (p.r[pr.first] + p.r[pr.second] + 2 * eps) * (1 + 1e-11));
   }
 }
+
+TEST(Spacetree, CrowdedVerticesArePrunedAlongXAndStayExact) {
+  // All particles forced onto a coarse level: vertices hold dozens of particles and are
+  // swept along x. Pairs at exactly the cut-off along x (the pruned axis), a few big spheres
+  // (kept apart from the pruning), ghosts among them.
+  const double eps = 0.001;
+  Particles p;
+  std::mt19937_64 rng(78);
+  std::uniform_real_distribution<double> u(0.1, 0.9);
+  for (int k = 0; k < 60; ++k) {  // active, listed first
+    // The biggest particles, so the pruning bounds are tight. The first 30 pairs straddle a
+    // boundary x = 0, 0.5 or 1 between two level-1 vertices (y, z < 0.5); the others lie
+    // within one vertex (y, z > 0.5, x in (0.1, 0.4)).
+    const bool straddles = k < 30;
+    const double r1 = 0.016 - 0.0001 * (k % 30), r2 = r1;
+    const double y = 0.5 * u(rng) + (straddles ? 0.0 : 0.4), z = 0.5 * u(rng) + (straddles ? 0.0 : 0.4);
+    const double x = straddles ? 0.5 * (k % 3) - 0.5 * (r1 + r2 + 2.0 * eps) : 0.5 * u(rng);
+    p.add(x, y, z, r1);
+    p.add(x + (r1 + r2 + 2.0 * eps), y, z, r2);
+  }
+  for (int k = 0; k < 6; ++k) p.add(u(rng), u(rng), u(rng), 0.2);  // big ones: unsorted tails
+  const Particles cloud = randomCloud(1500, 1.0, 0.004, 0.01, 77, true);
+  for (int i = 0; i < cloud.size(); ++i) p.add(cloud.x[i][0], cloud.x[i][1], cloud.x[i][2], cloud.r[i]);
+  const int nActive = p.size() - 150;
+  spacetree::GridGeometry geometry;
+  geometry.origin = {-0.25, -0.25, -0.25};
+  geometry.rootSize = 1.5;
+  geometry.depth = 4;
+  const std::vector<int> levels(std::size_t(p.size()), 1);
+  Spacetree tree(SpacetreeOptions{eps});
+  tree.build(p.positions(), p.r.data(), p.size(), nActive, geometry, levels.data());
+  PairSet candidates, within;
+  tree.forEachCandidatePair([&](int i, int j) {
+    if (isPair(p, i, j, eps)) candidates.insert(std::minmax(i, j));
+  });
+  const std::uint64_t tested = tree.statistics().candidatePairs;
+  tree.forEachPairWithin([&](int i, int j, double) { within.insert(std::minmax(i, j)); });
+  const PairSet expected = bruteForce(p, eps, nActive);
+  EXPECT_EQ(candidates, expected);
+  EXPECT_EQ(within, expected);
+  EXPECT_GE(expected.size(), 30u);  // most of the touching pairs survive the round-off
+  // Without pruning each particle would be tested against about 14 x 1620 / 64 = 350 others.
+  EXPECT_LT(tested, std::uint64_t(p.size()) * 120);
+}

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tree/RadixSort.h"
+#include "tree/VertexKeySet.h"
 #include "tree/VertexLookup.h"
 
 using namespace spacetree;
@@ -68,6 +69,35 @@ TEST(RadixSort, SortsLikeAStableSort) {
     for (std::size_t s = 0; s < records.size(); ++s) {
       EXPECT_EQ(records[s].key, expected[s].key);
       EXPECT_EQ(records[s].index, expected[s].index) << "not stable at " << s;
+    }
+  }
+}
+
+TEST(VertexKeySet, InsertsAndErasesLikeAStdSet) {
+  // Clustered keys (long probe chains) and random batches of removals, small (erased one by
+  // one with backward shifts) and large (table rebuilt): membership and members as a std::set.
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<int> coordinate(0, 12);
+  auto randomKey = [&] { return spacetree::packVertexKey(coordinate(rng), coordinate(rng), coordinate(rng)); };
+  spacetree::VertexKeySet set;
+  set.reset(4);
+  std::set<std::uint64_t> reference;
+  for (int round = 0; round < 400; ++round) {
+    for (int k = 0; k < 20; ++k) {
+      const std::uint64_t key = randomKey();
+      set.insert(key);
+      reference.insert(key);
+    }
+    std::vector<std::uint64_t> removals;
+    const int count = round % 10 == 0 ? 400 : 3;
+    for (int k = 0; k < count; ++k) removals.push_back(randomKey());
+    set.eraseAll(removals);
+    for (std::uint64_t key : removals) reference.erase(key);
+    ASSERT_EQ(set.size(), reference.size()) << "round " << round;
+    ASSERT_EQ(std::set<std::uint64_t>(set.keys.begin(), set.keys.end()), reference) << "round " << round;
+    for (int k = 0; k < 50; ++k) {
+      const std::uint64_t key = randomKey();
+      ASSERT_EQ(set.contains(key), reference.count(key) == 1) << "round " << round;
     }
   }
 }

@@ -36,12 +36,12 @@ double AdaptiveGrid::meshSize(int level) const {
 
 int AdaptiveGrid::finestFit(double required) const {
   int l = 0;
-  while (l < geometry_.depth && meshSize(l + 1) >= required) ++l;
+  while (l < geometry_.depth && meshSize_[std::size_t(l) + 1] >= required) ++l;
   return l;
 }
 
 AdaptiveGrid::Index3 AdaptiveGrid::cellOf(int level, const double p[3]) const {
-  const double inv = 1.0 / meshSize(level);
+  const double inv = inverseMeshSize_[level];
   const std::int64_t last = cellsPerAxis(level) - 1;
   auto c = [&](int d) {
     return std::clamp(std::int64_t(std::floor((p[d] - geometry_.origin[d]) * inv)), std::int64_t(0), last);
@@ -51,7 +51,7 @@ AdaptiveGrid::Index3 AdaptiveGrid::cellOf(int level, const double p[3]) const {
 
 AdaptiveGrid::Index3 AdaptiveGrid::nearestVertex(int level, const double p[3]) const {
   // Same rounding as Spacetree::placeParticles, so both agree on the host vertex.
-  const double inv = 1.0 / meshSize(level);
+  const double inv = inverseMeshSize_[level];
   auto v = [&](int d) { return std::int64_t((p[d] - geometry_.origin[d]) * inv + 0.5); };
   return {v(0), v(1), v(2)};
 }
@@ -92,7 +92,8 @@ bool AdaptiveGrid::isRefinedAt(int level, const double p[3]) const {
 }
 
 int AdaptiveGrid::computeHost(const double p[3], int admissible) const {
-  int l = 0;
+  // Levels above the start-off grid are refined everywhere: no look-up needed there.
+  int l = std::max(0, std::min(regularDepth_, admissible));
   while (l < admissible) {
     const Index3 c = cellOf(l, p);
     if (!isRefined(l, c.i, c.j, c.k)) break;
@@ -107,7 +108,12 @@ int AdaptiveGrid::computeHost(const double p[3], int admissible) const {
 }
 
 void AdaptiveGrid::rehostAll(const double (*x)[3], int n) {
+  // Same positions (within one update, and refineForPairs after it) on an unchanged grid:
+  // the hosts are already those.
+  if (hostsCurrent_ && hostsGridVersion_ == gridVersion_) return;
   for (int i = 0; i < n; ++i) host_[i] = computeHost(x[i], admissible_[i]);
+  hostsCurrent_ = true;
+  hostsGridVersion_ = gridVersion_;
 }
 
 bool AdaptiveGrid::needsNewGeometry(const double (*x)[3], const double* radius, int n) const {
@@ -156,11 +162,20 @@ void AdaptiveGrid::chooseGeometry(const double (*x)[3], const double* radius, in
   const int depth = geometry_.depth;
   for (int d = 0; d < 3; ++d) geometry_.origin[d] = 0.5 * (lo[d] + hi[d]) - 0.5 * root;
   haveGeometry_ = true;
+  inverseMeshSize_.resize(std::size_t(depth) + 1);
+  meshSize_.resize(std::size_t(depth) + 1);
+  for (int l = 0; l <= depth; ++l) {
+    meshSize_[l] = meshSize(l);
+    inverseMeshSize_[l] = 1.0 / meshSize(l);
+  }
+  ++gridVersion_;
   refined_.assign(std::size_t(depth) + 1, CellSet{});
   for (CellSet& cells : refined_) cells.reset(0);
   heat_.assign(std::size_t(depth) + 1, Markers{});
   for (Markers& markers : heat_) markers.reset(0);
   ++stats_.geometryResets;
+  lastRadius_ = -1.0;  // admissible levels depend on the cube
+  incrementalValid_ = false;
 }
 
 bool AdaptiveGrid::refineCell(int level, std::int64_t i, std::int64_t j, std::int64_t k) {
@@ -173,6 +188,8 @@ bool AdaptiveGrid::refineCell(int level, std::int64_t i, std::int64_t j, std::in
         for (std::int64_t c = 3 * k; c <= 3 * k + 3; ++c)
           if (isHanging(level + 1, a, b, c)) created.push_back(key(a, b, c));
   refined_[level].insert(key(i, j, k));
+  ++gridVersion_;
+  if (trackRefinements_) newRefined_.emplace_back(level, key(i, j, k));
   for (std::uint64_t v : created) {
     std::int64_t& h = heat_[level + 1][v];
     h = std::min(kMaxHeat, h + options_.shock);
@@ -190,6 +207,7 @@ bool AdaptiveGrid::refineAroundVertex(int level, const Index3& v) {
 }
 
 void AdaptiveGrid::refineNaively(const double (*x)[3], int n) {
+  hostsCurrent_ = false;  // hosts are set here, not by rehostAll
   // Refine the 2^d cells around the host vertex while a drop would sieve the particle to the
   // next finer level; those cells hold every cell its next nearest vertex needs, so each
   // round drops it by one level (the paper cascades within one top-down sweep, too).
@@ -394,14 +412,32 @@ void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
     for (std::uint64_t cellKey : refined_[l].keys)
       if (!blocked.contains(cellKey)) removals.push_back(cellKey);
     refined_[l].eraseAll(removals);
+    if (!removals.empty()) ++gridVersion_;
     stats_.coarsenings += removals.size();
   }
+}
+
+int AdaptiveGrid::admissibleFor(double radius) {
+  if (radius != lastRadius_) {  // radii repeat (species): skip the level search
+    lastRadius_ = radius;
+    lastAdmissible_ = finestFit(pairSearch_.requiredMeshSize(radius));
+  }
+  return lastAdmissible_;
 }
 
 void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const double* radius, int n) {
   stats_.refinements = 0;
   stats_.coarsenings = 0;
   n = std::max(n, 0);
+  if (options_.type == GridType::Adaptive && options_.incremental && incrementalValid_ && n > 0 &&
+      n == int(host_.size()) && !needsNewGeometry(x, radius, n) && updateIncrementally(x, radius, n)) {
+    collectStatistics();
+    return;
+  }
+  incrementalValid_ = false;
+  stats_.incremental = false;
+  stats_.rehosted = std::uint64_t(n);
+  hostsCurrent_ = false;  // particles moved
   host_.assign(std::size_t(n), 0);
   admissible_.resize(std::size_t(n));
   if (n == 0) {
@@ -411,7 +447,7 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
   if (needsNewGeometry(x, radius, n)) chooseGeometry(x, radius, n);
   int coarsestFit = geometry_.depth, finestFitAll = 0;
   for (int i = 0; i < n; ++i) {
-    admissible_[i] = finestFit(pairSearch_.requiredMeshSize(radius[i]));
+    admissible_[i] = admissibleFor(radius[i]);
     coarsestFit = std::min(coarsestFit, admissible_[i]);
     finestFitAll = std::max(finestFitAll, admissible_[i]);
   }
@@ -419,6 +455,7 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
   // Stored refinements now inside the everywhere-refined levels are redundant.
   for (int l = 0; l < regularDepth_ && l < int(refined_.size()); ++l)
     if (refined_[l].size()) refined_[l].reset(0);
+  ++gridVersion_;  // the start-off depth may have changed
 
   rehostAll(x, n);  // particles moved: drops and lifts on the current grid
   switch (options_.type) {
@@ -442,7 +479,153 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
     // changes, no re-host needed.
     if (options_.type == GridType::Reluctant) rehostAll(x, n);
   }
+  if (options_.type == GridType::Adaptive && options_.incremental) resetIncrementalState(x, n);
   collectStatistics();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Incremental adaptive update. After a (full or incremental) adaptive update every particle is
+// hosted on its admissible level, on a non-hanging vertex that the coarsening keeps. So a
+// particle whose admissible level and nearest vertex there are unchanged keeps its host without
+// a single look-up, and its refinement needs nothing. Only the others (`moved_`) are re-hosted
+// and refined for, in index order, exactly as the full update treats them. Coarsening can only
+// remove cells that lost a blocker: around vertices that stopped being kept, cells refined in
+// this update, and parents of removed cells (cascading up). Kept vertices are counted
+// (particles hosted + kept children), so the tree grammar is updated along the changed paths
+// instead of being re-derived from every particle.
+// ---------------------------------------------------------------------------------------------
+
+void AdaptiveGrid::addKept(int level, std::uint64_t vertexKey, int delta) {
+  std::int64_t& count = keepCount_[level][vertexKey];
+  const bool before = count > 0;
+  count += delta;
+  const bool after = count > 0;
+  if (before == after) return;
+  if (!after) lostKept_[level].push_back(vertexKey);
+  if (level - 1 > regularDepth_) {
+    const VertexIndex w = unpackVertexKey(vertexKey);
+    forEachParentVertex(level - 1, w.i, w.j, w.k,
+                        [&](std::uint64_t u) { addKept(level - 1, u, after ? 1 : -1); });
+  }
+}
+
+void AdaptiveGrid::resetIncrementalState(const double (*x)[3], int n) {
+  const std::size_t levels = std::size_t(geometry_.depth) + 1;
+  hostKey_.resize(std::size_t(n));
+  keepCount_.resize(levels);
+  for (Markers& counts : keepCount_) counts.reset(0);
+  lostKept_.assign(levels, {});
+  candidates_.resize(levels);
+  for (int i = 0; i < n; ++i) {
+    const Index3 v = nearestVertex(host_[i], x[i]);
+    hostKey_[i] = key(v.i, v.j, v.k);
+    if (host_[i] > regularDepth_) addKept(host_[i], hostKey_[i], 1);
+  }
+  keepEntries_ = 0;
+  for (const Markers& counts : keepCount_) keepEntries_ += counts.size();
+  incrementalValid_ = true;
+}
+
+bool AdaptiveGrid::updateIncrementally(const double (*x)[3], const double* radius, int n) {
+  // Counters of vertices that are no longer kept stay as zeros: rebuild when they pile up.
+  std::size_t entries = 0;
+  for (const Markers& counts : keepCount_) entries += counts.size();
+  if (entries > 2 * keepEntries_ + 4096) return false;
+  int coarsestFit = geometry_.depth;
+  moved_.clear();
+  for (int i = 0; i < n; ++i) {
+    const int admissible = admissibleFor(radius[i]);
+    coarsestFit = std::min(coarsestFit, admissible);
+    bool moved = admissible != admissible_[i] || host_[i] != admissible;
+    admissible_[i] = admissible;
+    if (!moved) {
+      const Index3 v = nearestVertex(admissible, x[i]);
+      moved = key(v.i, v.j, v.k) != hostKey_[i];
+    }
+    if (moved) moved_.push_back(i);
+  }
+  if (coarsestFit != regularDepth_) return false;  // the start-off grid changes: full update
+
+  for (auto& lost : lostKept_) lost.clear();
+  newRefined_.clear();
+  // Re-host the moved particles on the grid of the last update, then refine for them.
+  for (int i : moved_) {
+    if (host_[i] > regularDepth_) addKept(host_[i], hostKey_[i], -1);
+    host_[i] = computeHost(x[i], admissible_[i]);
+  }
+  trackRefinements_ = true;
+  for (int i : moved_) {
+    while (host_[i] < admissible_[i]) {
+      const int l = host_[i];
+      refineAroundVertex(l, nearestVertex(l, x[i]));
+      host_[i] = computeHost(x[i], admissible_[i]);
+      if (host_[i] <= l) break;  // defensive: no progress (re-examined next update)
+    }
+  }
+  trackRefinements_ = false;
+  for (int i : moved_) {
+    const Index3 v = nearestVertex(host_[i], x[i]);
+    hostKey_[i] = key(v.i, v.j, v.k);
+    if (host_[i] > regularDepth_) addKept(host_[i], hostKey_[i], 1);
+  }
+  coarsenAroundLostVertices();
+  stats_.incremental = true;
+  stats_.rehosted = moved_.size();
+  hostsCurrent_ = false;
+  return true;
+}
+
+bool AdaptiveGrid::isBlocked(int level, std::int64_t i, std::int64_t j, std::int64_t k) const {
+  // As in coarsen(): a refined child, or a kept non-hanging vertex of the children's patch.
+  if (level + 1 < geometry_.depth)
+    for (std::int64_t a = 3 * i; a < 3 * i + 3; ++a)
+      for (std::int64_t b = 3 * j; b < 3 * j + 3; ++b)
+        for (std::int64_t c = 3 * k; c < 3 * k + 3; ++c)
+          if (refined_[level + 1].contains(key(a, b, c))) return true;
+  for (std::int64_t a = 3 * i; a <= 3 * i + 3; ++a)
+    for (std::int64_t b = 3 * j; b <= 3 * j + 3; ++b)
+      for (std::int64_t c = 3 * k; c <= 3 * k + 3; ++c)
+        if (isKept(level + 1, key(a, b, c)) && !isHanging(level + 1, a, b, c)) return true;
+  return false;
+}
+
+void AdaptiveGrid::coarsenAroundLostVertices() {
+  const int depth = geometry_.depth;
+  if (depth <= regularDepth_) return;
+  for (int m = regularDepth_; m < depth; ++m) candidates_[m].reset(0);
+  for (int l = regularDepth_ + 1; l <= depth; ++l)
+    for (std::uint64_t vertexKey : lostKept_[l]) {
+      if (isKept(l, vertexKey)) continue;  // lost and regained within this update
+      const VertexIndex w = unpackVertexKey(vertexKey);
+      // Parent cells c with 3c <= w <= 3c + 3 per axis (the cells this vertex blocked).
+      const std::int64_t ai = w.i % 3 == 0 && w.i > 0 ? w.i / 3 - 1 : w.i / 3;
+      const std::int64_t aj = w.j % 3 == 0 && w.j > 0 ? w.j / 3 - 1 : w.j / 3;
+      const std::int64_t ak = w.k % 3 == 0 && w.k > 0 ? w.k / 3 - 1 : w.k / 3;
+      for (std::int64_t a = ai; a <= w.i / 3; ++a)
+        for (std::int64_t b = aj; b <= w.j / 3; ++b)
+          for (std::int64_t e = ak; e <= w.k / 3; ++e)
+            if (refined_[l - 1].contains(key(a, b, e))) candidates_[l - 1].insert(key(a, b, e));
+    }
+  for (const auto& cell : newRefined_)
+    if (cell.first >= regularDepth_ && cell.first < depth) candidates_[cell.first].insert(cell.second);
+  std::vector<std::uint64_t>& removals = removals_;
+  for (int m = depth - 1; m >= regularDepth_; --m) {
+    removals.clear();
+    for (std::uint64_t cellKey : candidates_[m].keys) {  // decide the whole level first
+      if (!refined_[m].contains(cellKey)) continue;
+      const VertexIndex c = unpackVertexKey(cellKey);
+      if (!isBlocked(m, c.i, c.j, c.k)) removals.push_back(cellKey);
+    }
+    if (removals.empty()) continue;
+    refined_[m].eraseAll(removals);
+    ++gridVersion_;
+    stats_.coarsenings += removals.size();
+    if (m - 1 >= regularDepth_)
+      for (std::uint64_t cellKey : removals) {  // the parent lost a refined child
+        const VertexIndex c = unpackVertexKey(cellKey);
+        candidates_[m - 1].insert(key(c.i / 3, c.j / 3, c.k / 3));
+      }
+  }
 }
 
 void AdaptiveGrid::buildSpacetree(Spacetree& tree, const double (*x)[3], const double* radius, int n,

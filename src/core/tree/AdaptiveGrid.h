@@ -39,6 +39,11 @@ struct AdaptiveGridOptions {
   // Reluctant only: the caller reports the close pairs its own sweep found (refineForPairs)
   // instead of update() searching them with a second sweep.
   bool pairsFromCaller = false;
+  // Adaptive only: the persistent grid re-hosts only particles whose admissible level or host
+  // vertex changed since the last update and coarsens only around the vertices they left
+  // (kept-vertex counters instead of re-deriving the tree grammar from every particle). The
+  // result is the grid a full update gives (tested); false forces the full update.
+  bool incremental = true;
 };
 
 class AdaptiveGrid {
@@ -126,6 +131,14 @@ class AdaptiveGrid {
   void updateHeatMarkers(const double (*x)[3], int n);
   void coarsen(const double (*x)[3], int n);
   void collectStatistics();
+  // Incremental adaptive update (options_.incremental): see update().
+  bool updateIncrementally(const double (*x)[3], const double* radius, int n);
+  void resetIncrementalState(const double (*x)[3], int n);
+  void addKept(int level, std::uint64_t vertexKey, int delta);
+  bool isKept(int level, std::uint64_t vertexKey) const { return keepCount_[level].get(vertexKey) > 0; }
+  bool isBlocked(int level, std::int64_t i, std::int64_t j, std::int64_t k) const;
+  void coarsenAroundLostVertices();
+  int admissibleFor(double radius);
   // Vertices of `level` whose 7^3 children on level + 1 contain child vertex (i, j, k).
   template <class F>
   void forEachParentVertex(int level, std::int64_t i, std::int64_t j, std::int64_t k, F&& f) const;
@@ -146,6 +159,25 @@ class AdaptiveGrid {
   KeySet parentsOfRefined_;
   std::vector<std::uint64_t> removals_;
   AdaptiveGridStatistics stats_;
+
+  // Incremental state (Adaptive): host vertex key per particle, and per level the number of
+  // reasons a vertex is kept from coarsening (particles hosted there + kept child vertices).
+  bool incrementalValid_ = false;
+  std::vector<std::uint64_t> hostKey_;
+  std::vector<Markers> keepCount_;
+  std::vector<std::vector<std::uint64_t>> lostKept_;  // per level: vertices no longer kept
+  bool trackRefinements_ = false;
+  std::vector<std::pair<int, std::uint64_t>> newRefined_;  // (level, cell) refined this update
+  std::vector<int> moved_;
+  std::vector<KeySet> candidates_;
+  std::vector<double> meshSize_, inverseMeshSize_;  // meshSize(level) and 1 / it, per level
+  // Grid changes (refinements, coarsenings, new cube) count up gridVersion_; rehostAll() is
+  // skipped when the positions and the grid are those of its last run.
+  std::uint64_t gridVersion_ = 0, hostsGridVersion_ = 0;
+  bool hostsCurrent_ = false;
+  std::size_t keepEntries_ = 0;  // counter entries after the last rebuild
+  double lastRadius_ = -1.0;
+  int lastAdmissible_ = 0;
 };
 
 template <class F>

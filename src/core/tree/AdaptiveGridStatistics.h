@@ -21,6 +21,8 @@ struct AdaptiveGridStatistics {
   int deepestLevel = 0;                         // finest level hosting a particle
   int regularDepth = 0;                         // levels above it are refined everywhere
   std::uint64_t geometryResets = 0;             // cube re-chosen (particles left it), cumulative
+  std::uint64_t rehosted = 0;                   // particles whose host was recomputed last update
+  bool incremental = false;                     // last update touched only the moved particles
 };
 
 }  // namespace spacetree

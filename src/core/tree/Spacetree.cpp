@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace spacetree {
 
@@ -78,7 +79,12 @@ void Spacetree::resetLevels(const std::array<double, 3>& origin, double rootSize
 
 void Spacetree::clear(int n, int nActive) {
   nActive_ = nActive;
-  levels_.clear();
+  // Keep the levels' storage (vertex lists, look-up tables) from build to build: freeing and
+  // re-allocating it every step costs page faults comparable to the build itself.
+  for (Level& level : levels_) {
+    level.vertices.clear();
+    level.precomputedNeighbourhoods = false;
+  }
   stats_ = SpacetreeStatistics{};
   particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
   sx_.clear();
@@ -174,6 +180,16 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
         ++e;
       }
       v.end = e;
+      v.maxRadius = 0.0;
+      for (std::int32_t q = v.begin; q < v.end; ++q) v.maxRadius = std::max(v.maxRadius, sr_[q]);
+      v.sortedByX = v.end - v.begin >= kSweepAndPruneMinParticles;
+      v.bigBegin = v.end;
+      v.maxSmallRadius = v.maxRadius;
+      if (v.sortedByX) {
+        v.bigBegin = sortRangeByX(v.begin, v.end);
+        v.maxSmallRadius = 0.0;
+        for (std::int32_t q = v.begin; q < v.bigBegin; ++q) v.maxSmallRadius = std::max(v.maxSmallRadius, sr_[q]);
+      }
       level.vertices.push_back(v);
     }
     level.lookup.build(level.vertices);
@@ -202,6 +218,36 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
     bytes += level.vertices.capacity() * sizeof(Vertex) + level.lookup.memoryBytes() +
              level.neighbourhoods.memoryBytes();
   stats_.memoryBytes = bytes;
+}
+
+std::int32_t Spacetree::sortRangeByX(std::int32_t begin, std::int32_t end) {
+  // A crowded vertex (a lifted cloud) keeps its particles ordered along x, so the sweep can
+  // prune its pairs by their x distance instead of testing all of them. Particles much bigger
+  // than the vertex's median go last, unsorted: they would widen every pruning window.
+  const std::size_t count = std::size_t(end - begin);
+  scratchValues_.assign(sr_.begin() + begin, sr_.begin() + end);
+  std::nth_element(scratchValues_.begin(), scratchValues_.begin() + count / 2, scratchValues_.end());
+  const double bigRadius = kBigRadiusOverMedian * scratchValues_[count / 2];
+  order_.resize(count);
+  for (std::int32_t s = begin; s < end; ++s) order_[std::size_t(s - begin)] = s;
+  const auto bigFirst = std::stable_partition(order_.begin(), order_.end(),
+                                              [&](std::int32_t a) { return !(sr_[a] > bigRadius); });
+  std::sort(order_.begin(), bigFirst, [&](std::int32_t a, std::int32_t b) {
+    return sx_[a] < sx_[b] || (sx_[a] == sx_[b] && a < b);
+  });
+  const std::int32_t bigBegin = begin + std::int32_t(bigFirst - order_.begin());
+  auto permute = [&](auto& values) {
+    scratchValues_.resize(order_.size());
+    for (std::size_t t = 0; t < order_.size(); ++t) scratchValues_[t] = double(values[order_[t]]);
+    for (std::size_t t = 0; t < order_.size(); ++t)
+      values[std::size_t(begin) + t] = static_cast<typename std::decay_t<decltype(values)>::value_type>(scratchValues_[t]);
+  };
+  permute(sx_);
+  permute(sy_);
+  permute(sz_);
+  permute(sr_);
+  permute(sortedId_);  // int32 through double: exact
+  return bigBegin;
 }
 
 void Spacetree::gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,

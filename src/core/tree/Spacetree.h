@@ -55,7 +55,7 @@ class Spacetree {
   // |x_i - x_j| <= r_i + r_j + 2 eps; the visitor applies the exact cut-off.
   template <class Visitor>
   void forEachCandidatePair(Visitor&& visit) {
-    sweep([&](std::int32_t a, std::int32_t b) { visit(sortedId_[a], sortedId_[b]); });
+    sweep([&](std::int32_t a, std::int32_t b) { visit(sortedId_[a], sortedId_[b]); }, 1.0 + kPruneMargin);
   }
 
   // Like forEachCandidatePair, but only pairs with
@@ -72,7 +72,7 @@ class Spacetree {
       const double cut = (sr_[a] + sr_[b] + halo) * scale;
       const double distanceSquared = dx * dx + dy * dy + dz * dz;
       if (distanceSquared <= cut * cut) visit(sortedId_[a], sortedId_[b], distanceSquared);
-    });
+    }, scale * (1.0 + kPruneMargin));
   }
 
   int levelOf(int particle) const { return particleLevel_[particle]; }
@@ -93,7 +93,16 @@ class Spacetree {
     VertexIndex index;
     std::int32_t begin, end;  // range of hosted particles in the sorted arrays
     std::int32_t active;      // how many of them are active
+    double maxRadius;         // of the hosted particles
+    bool sortedByX;           // crowded: [begin, bigBegin) is ordered by x (sweep and prune)
+    std::int32_t bigBegin;    // crowded: [bigBegin, end) holds the much bigger ones, unsorted
+    double maxSmallRadius;    // of [begin, bigBegin)
   };
+  // Vertices holding at least this many particles are ordered by x, and pairs of two such
+  // vertices (or within one) are pruned by their x distance before the exact test. Regular
+  // levels rarely reach it; coarse levels holding a lifted cloud (reluctant grid) do.
+  static constexpr std::int32_t kSweepAndPruneMinParticles = 8;
+  static constexpr double kBigRadiusOverMedian = 4.0;
   struct Level {
     double meshSize = 0.0;
     std::vector<Vertex> vertices;         // sorted by key
@@ -110,8 +119,12 @@ class Spacetree {
   };
 
   // The traversal; onPair(a, b) receives positions in the sorted arrays.
+  // pruneScale: pairs of crowded vertices are skipped when their x distance exceeds
+  // (r_max + r_max' + 2 eps) pruneScale, a bound at or above the visitor's cut-off.
   template <class PairFunction>
-  void sweep(PairFunction&& onPair);
+  void sweep(PairFunction&& onPair, double pruneScale);
+  // Relative margin of that bound over the cut-off (round-off of the x difference).
+  static constexpr double kPruneMargin = 1e-9;
   int hostLevel(double required) const;
   // Checks positions and radii; returns the bounding box and the radius range.
   static void validate(const double (*x)[3], const double* radius, int n, double lo[3],
@@ -119,6 +132,7 @@ class Spacetree {
   void clear(int n, int nActive);  // forget the last build
   void resetLevels(const std::array<double, 3>& origin, double rootSize, int depth);
   void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
+  std::int32_t sortRangeByX(std::int32_t begin, std::int32_t end);  // returns bigBegin
   void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
                                    std::int64_t ak, std::vector<std::int32_t>& out) const;
   bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
@@ -138,6 +152,8 @@ class Spacetree {
   std::vector<KeyedIndex> sortKeys_, sortScratch_;
   std::vector<AncestorCache> ancestorCaches_;
   std::vector<int> populatedCoarser_;
+  std::vector<std::int32_t> order_;
+  std::vector<double> scratchValues_;
 
   SpacetreeStatistics stats_;
 };
@@ -152,8 +168,9 @@ inline constexpr std::array<std::array<int, 3>, 13> kForwardNeighbourOffsets{{
     {1, 1, 0}, {1, 1, 1}, {0, 1, -1}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}};
 
 template <class PairFunction>
-void Spacetree::sweep(PairFunction&& onPair) {
+void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
   std::uint64_t candidatePairs = 0;
+  const double halo = 2.0 * options_.epsilon;
   const double sqrt3 = std::sqrt(3.0);
   const int nLevels = int(levels_.size());
   for (auto& level : stats_.levels) level.virtualLinks = 0;
@@ -183,10 +200,24 @@ void Spacetree::sweep(PairFunction&& onPair) {
     for (const Vertex& v : level.vertices) {
       // 1. Real particles of this vertex among themselves.
       const bool allActive = v.active == v.end - v.begin;  // no ghost: skip per-pair checks
-      for (std::int32_t a = v.begin; a < v.end; ++a)
-        for (std::int32_t b = a + 1; b < v.end; ++b)
-          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
-      candidatePairs += std::uint64_t(v.end - v.begin) * (v.end - v.begin - 1) / 2;
+      if (v.sortedByX) {
+        const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
+        for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
+          for (std::int32_t b = a + 1; b < v.bigBegin && sx_[b] - sx_[a] <= reach; ++b) {
+            if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+            ++candidatePairs;
+          }
+        for (std::int32_t b = v.bigBegin; b < v.end; ++b)  // the big ones against all before them
+          for (std::int32_t a = v.begin; a < b; ++a)
+            if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+        candidatePairs += std::uint64_t(v.end - v.bigBegin) * (v.end - v.bigBegin - 1) / 2 +
+                          std::uint64_t(v.end - v.bigBegin) * (v.bigBegin - v.begin);
+      } else {
+        for (std::int32_t a = v.begin; a < v.end; ++a)
+          for (std::int32_t b = a + 1; b < v.end; ++b)
+            if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+        candidatePairs += std::uint64_t(v.end - v.begin) * (v.end - v.begin - 1) / 2;
+      }
 
       // 2. Against the real particles of the forward vertex-connected neighbours.
       const std::int64_t position =
@@ -200,6 +231,27 @@ void Spacetree::sweep(PairFunction&& onPair) {
         if (w == VertexLookup::kAbsent) continue;
         const Vertex& nb = level.vertices[w];
         if (v.active == 0 && nb.active == 0) continue;
+        if (v.sortedByX && nb.sortedByX) {
+          // Both ordered by x: a window of nb per particle of v (sweep and prune).
+          const double reach = (v.maxSmallRadius + nb.maxSmallRadius + halo) * pruneScale;
+          const bool bothActive = allActive && nb.active == nb.end - nb.begin;
+          std::int32_t start = nb.begin;
+          for (std::int32_t a = v.begin; a < v.bigBegin; ++a) {
+            const double lo = sx_[a] - reach, hi = sx_[a] + reach;
+            while (start < nb.bigBegin && sx_[start] < lo) ++start;
+            for (std::int32_t b = start; b < nb.bigBegin && sx_[b] <= hi; ++b) {
+              if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+              ++candidatePairs;
+            }
+          }
+          // The big ones of either vertex against everything of the other, unpruned.
+          for (std::int32_t a = v.begin; a < v.end; ++a)
+            for (std::int32_t b = a < v.bigBegin ? nb.bigBegin : nb.begin; b < nb.end; ++b)
+              if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+          candidatePairs += std::uint64_t(v.bigBegin - v.begin) * (nb.end - nb.bigBegin) +
+                            std::uint64_t(v.end - v.bigBegin) * (nb.end - nb.begin);
+          continue;
+        }
         if (allActive || nb.active == nb.end - nb.begin) {
           for (std::int32_t a = v.begin; a < v.end; ++a)
             for (std::int32_t b = nb.begin; b < nb.end; ++b) onPair(a, b);

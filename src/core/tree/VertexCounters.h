@@ -35,6 +35,13 @@ class VertexCounters {
     return values.back();
   }
 
+  // The counter of `key` without creating it (0 if absent).
+  std::int64_t get(std::uint64_t key) const {
+    if (capacity_ == 0) return 0;
+    const std::int32_t slot = map_.find(key);
+    return slot == VertexHashMap::kAbsent ? 0 : values[std::size_t(slot)];
+  }
+
   std::size_t size() const { return keys.size(); }
 
  private:

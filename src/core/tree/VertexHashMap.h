@@ -38,6 +38,27 @@ class VertexHashMap {
     }
   }
 
+  // Removes `key` if present (backward-shift deletion: no tombstones on the look-up path).
+  void erase(std::uint64_t key) {
+    std::size_t i = hash(key) & mask_;
+    while (keys_[i] != key) {
+      if (keys_[i] == kEmptyKey) return;
+      i = (i + 1) & mask_;
+    }
+    for (std::size_t j = i;;) {
+      j = (j + 1) & mask_;
+      if (keys_[j] == kEmptyKey) break;
+      const std::size_t home = hash(keys_[j]) & mask_;
+      // The entry at j may move back to the hole at i unless its home lies cyclically in (i, j].
+      const bool stays = i <= j ? (i < home && home <= j) : (i < home || home <= j);
+      if (stays) continue;
+      keys_[i] = keys_[j];
+      values_[i] = values_[j];
+      i = j;
+    }
+    keys_[i] = kEmptyKey;
+  }
+
   std::size_t memoryBytes() const {
     return keys_.capacity() * sizeof(std::uint64_t) + values_.capacity() * sizeof(std::int32_t);
   }

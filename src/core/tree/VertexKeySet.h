@@ -12,7 +12,7 @@ namespace spacetree {
 
 class VertexKeySet {
  public:
-  std::vector<std::uint64_t> keys;  // members in insertion order
+  std::vector<std::uint64_t> keys;  // members (insertion order until an erase)
 
   // Empties the set, sized for `expected` members.
   void reset(std::size_t expected) {
@@ -40,9 +40,25 @@ class VertexKeySet {
   bool contains(std::uint64_t key) const { return capacity_ > 0 && map_.find(key) != VertexHashMap::kAbsent; }
   std::size_t size() const { return keys.size(); }
 
-  // Removes every member of `removals` (keys that are not members are ignored).
+  // Removes every member of `removals` (keys that are not members are ignored). A few
+  // removals are erased one by one (the last member takes the place of a removed one, so the
+  // member order changes); many rebuild the table.
   void eraseAll(const std::vector<std::uint64_t>& removals) {
     if (removals.empty() || keys.empty()) return;
+    if (8 * removals.size() < keys.size()) {
+      for (std::uint64_t k : removals) {
+        const std::int32_t slot = map_.find(k);
+        if (slot == VertexHashMap::kAbsent) continue;
+        map_.erase(k);
+        const std::uint64_t last = keys.back();
+        keys.pop_back();
+        if (std::size_t(slot) < keys.size()) {
+          keys[std::size_t(slot)] = last;
+          map_.insert(last, slot);
+        }
+      }
+      return;
+    }
     VertexKeySet gone;
     gone.reset(removals.size());
     for (std::uint64_t k : removals) gone.insert(k);
