@@ -131,6 +131,16 @@ bool AdaptiveGrid::needsNewGeometry(const double (*x)[3], const double* radius, 
   return geometry_.depth < options_.maxLevel && minNeed > 0.0 && meshSize(geometry_.depth) / 3.0 >= minNeed;
 }
 
+void AdaptiveGrid::cacheMeshSizes() {
+  const std::size_t levels = std::size_t(geometry_.depth) + 1;
+  inverseMeshSize_.resize(levels);
+  meshSize_.resize(levels);
+  for (std::size_t l = 0; l < levels; ++l) {
+    meshSize_[l] = meshSize(int(l));
+    inverseMeshSize_[l] = 1.0 / meshSize(int(l));
+  }
+}
+
 void AdaptiveGrid::chooseGeometry(const double (*x)[3], const double* radius, int n) {
   double lo[3], hi[3];
   double minNeed = std::numeric_limits<double>::infinity(), maxNeed = 0.0;
@@ -162,12 +172,7 @@ void AdaptiveGrid::chooseGeometry(const double (*x)[3], const double* radius, in
   const int depth = geometry_.depth;
   for (int d = 0; d < 3; ++d) geometry_.origin[d] = 0.5 * (lo[d] + hi[d]) - 0.5 * root;
   haveGeometry_ = true;
-  inverseMeshSize_.resize(std::size_t(depth) + 1);
-  meshSize_.resize(std::size_t(depth) + 1);
-  for (int l = 0; l <= depth; ++l) {
-    meshSize_[l] = meshSize(l);
-    inverseMeshSize_[l] = 1.0 / meshSize(l);
-  }
+  cacheMeshSizes();
   ++gridVersion_;
   refined_.assign(std::size_t(depth) + 1, CellSet{});
   for (CellSet& cells : refined_) cells.reset(0);
@@ -766,15 +771,26 @@ std::vector<std::int64_t> AdaptiveGrid::serialise() const {
   w[kResets] = std::int64_t(stats_.geometryResets);
   w[kRefinements] = std::int64_t(stats_.refinements);
   w[kCoarsenings] = std::int64_t(stats_.coarsenings);
+  // Sets in ascending key order: the words depend on the grid's content only, not on the order
+  // in which an (incremental or full) update happened to insert and erase the keys; what the
+  // updates compute depends on the content only.
+  std::vector<std::uint64_t> sorted;
   w.push_back(std::int64_t(refined_.size()));
   for (const CellSet& cells : refined_) {
-    w.push_back(std::int64_t(cells.keys.size()));
-    for (std::uint64_t k : cells.keys) w.push_back(std::int64_t(k));
+    sorted.assign(cells.keys.begin(), cells.keys.end());
+    std::sort(sorted.begin(), sorted.end());
+    w.push_back(std::int64_t(sorted.size()));
+    for (std::uint64_t k : sorted) w.push_back(std::int64_t(k));
   }
+  std::vector<std::size_t> order;
   w.push_back(std::int64_t(heat_.size()));
   for (const Markers& markers : heat_) {
+    order.resize(markers.keys.size());
+    for (std::size_t s = 0; s < order.size(); ++s) order[s] = s;
+    std::sort(order.begin(), order.end(),
+              [&markers](std::size_t a, std::size_t b) { return markers.keys[a] < markers.keys[b]; });
     w.push_back(2 * std::int64_t(markers.keys.size()));  // words: (key, value) pairs
-    for (std::size_t s = 0; s < markers.keys.size(); ++s) {
+    for (std::size_t s : order) {
       w.push_back(std::int64_t(markers.keys[s]));
       w.push_back(markers.values[s]);
     }
@@ -863,6 +879,10 @@ AdaptiveGrid AdaptiveGrid::deserialise(const std::int64_t* words, std::size_t co
     }
   }
   if (in.at != count) badData("trailing words");
+  // derived state: the mesh-size caches of the cube; hosts and the incremental state are
+  // rebuilt by the next update() (a full one: incrementalValid_ is false)
+  if (haveGeometry) grid.cacheMeshSizes();
+  ++grid.gridVersion_;
   grid.collectStatistics();
   return grid;
 }

@@ -89,7 +89,7 @@ class AdaptiveGrid {
 
   // Restart: everything the grid keeps between updates that changes later updates (options,
   // cube, refined cells per level, reluctant heat markers, the cumulative reset count) as a
-  // flat word list; doubles are stored bit-exact, sets in their stored order, so a restored
+  // flat word list; doubles are stored bit-exact, sets in ascending key order, so a restored
   // grid's next updates equal the original's. Per-particle hosts are not stored: they are
   // recomputed by update(), which must come before the next buildSpacetree().
   std::vector<std::int64_t> serialise() const;
@@ -114,6 +114,7 @@ class AdaptiveGrid {
 
   bool needsNewGeometry(const double (*x)[3], const double* radius, int n) const;
   void chooseGeometry(const double (*x)[3], const double* radius, int n);
+  void cacheMeshSizes();  // meshSize_ / inverseMeshSize_ of geometry_
   int finestFit(double required) const;
   std::int64_t cellsPerAxis(int level) const { return kPowersOfThree[level]; }
   Index3 cellOf(int level, const double p[3]) const;
