@@ -17,8 +17,6 @@
 // for the baseline ISA only (and std::fma there becomes a library call).
 #if defined(__GNUC__)
 #define SPACETREE_INLINE_INTO_CLONES inline __attribute__((always_inline))
-#define SPACETREE_INLINE_INTO_CLONES_LAMBDA __attribute__((always_inline))
 #else
 #define SPACETREE_INLINE_INTO_CLONES inline
-#define SPACETREE_INLINE_INTO_CLONES_LAMBDA
 #endif
