@@ -44,12 +44,12 @@ SPACETREE_INLINE_INTO_CLONES void hybridDistancesOf(const PairSource& pairs, con
           band & (lower - slack < threshold) & (upper + slack >= threshold);
       verdict[l] = accurate ? (straddlesThreshold ? 2 : 0) : 1;
     }
+    // Every lane's penalty result first (a branch-free copy), then the fallbacks over it.
+    TriangleDistanceResult* out = results + begin;
+    for (int l = 0; l < lanes; ++l) out[l] = penalty.lane(l);
     for (int l = 0; l < lanes; ++l) {
+      if (verdict[l] == 0) continue;
       const std::size_t k = begin + std::size_t(l);
-      if (verdict[l] == 0) {
-        results[k] = penalty.lane(l);
-        continue;
-      }
       ++(verdict[l] == 2 ? counts.contactBandFallbacks : counts.residualFallbacks);
       results[k] = triangleDistance(pairs.first(k), pairs.second(k));
     }

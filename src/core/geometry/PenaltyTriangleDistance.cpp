@@ -223,6 +223,7 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
       g23[kLanes], g24[kLanes], g33[kLanes], g34[kLanes], g44[kLanes];
   alignas(64) double k1[kLanes], k2[kLanes], k3[kLanes], k4[kLanes];
   alignas(64) double u1[kLanes], u2[kLanes], v1[kLanes], v2[kLanes];
+  alignas(64) double longestSquared[kLanes];
 
 #pragma omp simd
   for (int l = 0; l < kLanes; ++l) {
@@ -251,6 +252,12 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
     // overflow whatever the particle size. The floor keeps a pair of points finite.
     const double inverseScale =
         1.0 / larger(0.25 * (dot(a1, a1) + dot(a2, a2) + dot(b1, b1) + dot(b2, b2)), 1e-300);
+    // Longest edge squared (the pair's length scale h), from the squared edges at hand.
+    const double a3x = a2[0][l] - a1[0][l], a3y = a2[1][l] - a1[1][l], a3z = a2[2][l] - a1[2][l];
+    const double b3x = b2[0][l] - b1[0][l], b3y = b2[1][l] - b1[1][l], b3z = b2[2][l] - b1[2][l];
+    longestSquared[l] =
+        larger(larger(larger(dot(a1, a1), dot(a2, a2)), a3x * a3x + a3y * a3y + a3z * a3z),
+               larger(larger(dot(b1, b1), dot(b2, b2)), b3x * b3x + b3y * b3y + b3z * b3z));
     g11[l] = dot(a1, a1) * inverseScale;
     g12[l] = dot(a1, a2) * inverseScale;
     g13[l] = -dot(a1, b1) * inverseScale;
@@ -335,11 +342,7 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
     const Vec3 w = x - y;
     const double distance = std::sqrt(dot(w, w));
     const double lowerBound = larger(separationAlong(w, pair), 0.0);
-    const double longestSquared =
-        larger(larger(larger(dot(pair.a1, pair.a1), dot(pair.a2, pair.a2)),
-                      larger(dot(pair.a2 - pair.a1, pair.a2 - pair.a1), dot(pair.b1, pair.b1))),
-               larger(dot(pair.b2, pair.b2), dot(pair.b2 - pair.b1, pair.b2 - pair.b1)));
-    const double longest = std::sqrt(longestSquared);
+    const double longest = std::sqrt(longestSquared[l]);
     // Written so that a NaN counts as uncertain.
     uncertain |= !(distance - lowerBound <= tightGap * distance + tightGapPerLength * longest);
     result.distance[l] = distance;
