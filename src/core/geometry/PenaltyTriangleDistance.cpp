@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "geometry/IsaDispatch.h"
 #include "geometry/TrianglePairSources.h"
@@ -96,6 +97,113 @@ const double* penaltyWeights(int steps) {
 // parallel triangles). The shift changes the steps, not the fixed point (gradient zero).
 constexpr double kNewtonShift = 1e-10;
 
+// The per-lane arrays of the Newton iteration (see penaltyTriangleDistanceBatch).
+struct NewtonArrays {
+  const double *g11, *g12, *g13, *g14, *g22, *g23, *g24, *g33, *g34, *g44;
+  const double *k1, *k2, *k3, *k4;
+  const double *c11, *c12, *c13, *c21, *c22, *c23, *c31, *c32, *c33;
+  double *u1, *u2, *v1, *v2;
+};
+
+// Steps with a weight up to this solve for the new iterate directly (see newtonStep).
+// Measured on the benchmark's sphere pairs: up to 1e6 (the first four of eight steps) the
+// fallback rate does not grow; with the fifth step (7e6) it does (1.2 -> 1.9 % at 12 triangles).
+constexpr double kDirectStepWeightLimit = 1e6;
+
+// One semi-smooth Newton step with weight rho on all lanes. On the current piece of the
+// (piecewise quadratic) objective the gradient is r = (H - shift I) z + k - rho c, c = 1 for
+// the components of a violated sum constraint, so the step z - H^-1 r equals
+// H^-1 (shift z - k + rho c): `direct` solves for that, without the gradient (16 multiply-adds
+// fewer). Its rounding error is ~eps rho |z| instead of ~eps rho |dz| (the 2x2 determinants
+// cancel O(rho^2) terms), so it serves the steps with rho <= kDirectStepWeightLimit; the later
+// steps, which polish the result, take the incremental form.
+template <bool direct>
+SPACETREE_INLINE_INTO_CLONES void newtonStep(const double rho, const NewtonArrays& a) {
+  const double* __restrict g11 = a.g11; const double* __restrict g12 = a.g12;
+  const double* __restrict g13 = a.g13; const double* __restrict g14 = a.g14;
+  const double* __restrict g22 = a.g22; const double* __restrict g23 = a.g23;
+  const double* __restrict g24 = a.g24; const double* __restrict g33 = a.g33;
+  const double* __restrict g34 = a.g34; const double* __restrict g44 = a.g44;
+  const double* __restrict k1 = a.k1; const double* __restrict k2 = a.k2;
+  const double* __restrict k3 = a.k3; const double* __restrict k4 = a.k4;
+  const double* __restrict c11 = a.c11; const double* __restrict c12 = a.c12;
+  const double* __restrict c13 = a.c13; const double* __restrict c21 = a.c21;
+  const double* __restrict c22 = a.c22; const double* __restrict c23 = a.c23;
+  const double* __restrict c31 = a.c31; const double* __restrict c32 = a.c32;
+  const double* __restrict c33 = a.c33;
+  double* __restrict u1 = a.u1; double* __restrict u2 = a.u2;
+  double* __restrict v1 = a.v1; double* __restrict v2 = a.v2;
+#pragma omp simd
+  for (int l = 0; l < kLanes; ++l) {
+    const double z1 = u1[l], z2 = u2[l], z3 = v1[l], z4 = v2[l];
+    const double excessU = z1 + z2 - 1.0;
+    const double excessV = z3 + z4 - 1.0;
+    const double pu = excessU > 0.0 ? rho : 0.0;
+    const double pv = excessV > 0.0 ? rho : 0.0;
+    double r1, r2, r3, r4;
+    if constexpr (direct) {
+      r1 = kNewtonShift * z1 - k1[l] + pu;
+      r2 = kNewtonShift * z2 - k2[l] + pu;
+      r3 = kNewtonShift * z3 - k3[l] + pv;
+      r4 = kNewtonShift * z4 - k4[l] + pv;
+    } else {
+      // Gradient of 1/2 |x - y|^2 + rho/2 sum_i max(0, g_i(z))^2 (constraints g_i <= 0).
+      r1 = g11[l] * z1 + g12[l] * z2 + g13[l] * z3 + g14[l] * z4 + k1[l] +
+           rho * (smaller(z1, 0.0) + larger(excessU, 0.0));
+      r2 = g12[l] * z1 + g22[l] * z2 + g23[l] * z3 + g24[l] * z4 + k2[l] +
+           rho * (smaller(z2, 0.0) + larger(excessU, 0.0));
+      r3 = g13[l] * z1 + g23[l] * z2 + g33[l] * z3 + g34[l] * z4 + k3[l] +
+           rho * (smaller(z3, 0.0) + larger(excessV, 0.0));
+      r4 = g14[l] * z1 + g24[l] * z2 + g34[l] * z3 + g44[l] * z4 + k4[l] +
+           rho * (smaller(z4, 0.0) + larger(excessV, 0.0));
+    }
+    // Generalised Hessian: each violated constraint adds rho grad g_i grad g_i^T.
+    const double h11 = g11[l] + (z1 < 0.0 ? rho : 0.0) + pu + kNewtonShift;
+    const double h22 = g22[l] + (z2 < 0.0 ? rho : 0.0) + pu + kNewtonShift;
+    const double h33 = g33[l] + (z3 < 0.0 ? rho : 0.0) + pv + kNewtonShift;
+    const double h44 = g44[l] + (z4 < 0.0 ? rho : 0.0) + pv + kNewtonShift;
+    const double h12 = g12[l] + pu;
+    const double h34 = g34[l] + pv;
+    const double h13 = g13[l], h14 = g14[l], h23 = g23[l], h24 = g24[l];
+    // H dz = r by 2x2 blocks (u, v), written with adjugates so that the step's dependency
+    // chain holds one division instead of the four of an LDL^T solve:
+    //   S = det(Huu) Hvv - Huv^T adj(Huu) Huv   (det(Huu) times the Schur complement; the
+    //       quadratic form Huv^T adj(Huu) Huv from the constant products c of Huv),
+    //   dz_v = adj(S) (det(Huu) r_v - Huv^T adj(Huu) r_u) / det(S),
+    //   dz_u = adj(Huu) (r_u - Huv dz_v) / det(Huu).
+    const double detUU = h11 * h22 - h12 * h12;
+    const double s33 = detUU * h33 - (h22 * c11[l] + h12 * c12[l] + h11 * c13[l]);
+    const double s34 = detUU * h34 - (h22 * c21[l] + h12 * c22[l] + h11 * c23[l]);
+    const double s44 = detUU * h44 - (h22 * c31[l] + h12 * c32[l] + h11 * c33[l]);
+    const double ar1 = h22 * r1 - h12 * r2, ar2 = h11 * r2 - h12 * r1;
+    const double rs3 = detUU * r3 - (h13 * ar1 + h23 * ar2);
+    const double rs4 = detUU * r4 - (h14 * ar1 + h24 * ar2);
+    // One division for both determinants (a division costs as much as a dozen FMAs and
+    // sits on the step's dependency chain); the product stays far inside double range
+    // (entries are O(rho) <= 1e12 in edge-length units: |detUU * detS| < 1e100).
+    const double detS = s33 * s44 - s34 * s34;
+    const double inverseProduct = 1.0 / (detUU * detS);
+    const double inverseDetS = detUU * inverseProduct;
+    const double inverseDetUU = detS * inverseProduct;
+    const double dz3 = (s44 * rs3 - s34 * rs4) * inverseDetS;
+    const double dz4 = (s33 * rs4 - s34 * rs3) * inverseDetS;
+    const double t1 = r1 - h13 * dz3 - h14 * dz4, t2 = r2 - h23 * dz3 - h24 * dz4;
+    const double dz1 = (h22 * t1 - h12 * t2) * inverseDetUU;
+    const double dz2 = (h11 * t2 - h12 * t1) * inverseDetUU;
+    if constexpr (direct) {
+      u1[l] = dz1;
+      u2[l] = dz2;
+      v1[l] = dz3;
+      v2[l] = dz4;
+    } else {
+      u1[l] = z1 - dz1;
+      u2[l] = z2 - dz2;
+      v1[l] = z3 - dz3;
+      v2[l] = z4 - dz4;
+    }
+  }
+}
+
 }  // namespace
 
 SPACETREE_DISPATCH_BY_ISA
@@ -115,6 +223,7 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
       g23[kLanes], g24[kLanes], g33[kLanes], g34[kLanes], g44[kLanes];
   alignas(64) double k1[kLanes], k2[kLanes], k3[kLanes], k4[kLanes];
   alignas(64) double u1[kLanes], u2[kLanes], v1[kLanes], v2[kLanes];
+  alignas(64) double longestSquared[kLanes];
 
 #pragma omp simd
   for (int l = 0; l < kLanes; ++l) {
@@ -143,6 +252,12 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
     // overflow whatever the particle size. The floor keeps a pair of points finite.
     const double inverseScale =
         1.0 / larger(0.25 * (dot(a1, a1) + dot(a2, a2) + dot(b1, b1) + dot(b2, b2)), 1e-300);
+    // Longest edge squared (the pair's length scale h), from the squared edges at hand.
+    const double a3x = a2[0][l] - a1[0][l], a3y = a2[1][l] - a1[1][l], a3z = a2[2][l] - a1[2][l];
+    const double b3x = b2[0][l] - b1[0][l], b3y = b2[1][l] - b1[1][l], b3z = b2[2][l] - b1[2][l];
+    longestSquared[l] =
+        larger(larger(larger(dot(a1, a1), dot(a2, a2)), a3x * a3x + a3y * a3y + a3z * a3z),
+               larger(larger(dot(b1, b1), dot(b2, b2)), b3x * b3x + b3y * b3y + b3z * b3z));
     g11[l] = dot(a1, a1) * inverseScale;
     g12[l] = dot(a1, a2) * inverseScale;
     g13[l] = -dot(a1, b1) * inverseScale;
@@ -162,64 +277,29 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
     u1[l] = u2[l] = v1[l] = v2[l] = 1.0 / 3.0;
   }
 
-  for (int step = 0; step < steps; ++step) {
-    const double rho = weights[step];
+  // Constant products of the off-diagonal block Huv = G_uv (the penalty only touches the
+  // diagonal blocks): with them the Schur complement costs 12 multiply-adds per step, not 17.
+  alignas(64) double c11[kLanes], c12[kLanes], c13[kLanes], c21[kLanes], c22[kLanes],
+      c23[kLanes], c31[kLanes], c32[kLanes], c33[kLanes];
 #pragma omp simd
-    for (int l = 0; l < kLanes; ++l) {
-      const double z1 = u1[l], z2 = u2[l], z3 = v1[l], z4 = v2[l];
-      const double excessU = z1 + z2 - 1.0;
-      const double excessV = z3 + z4 - 1.0;
-      // Gradient of 1/2 |x - y|^2 + rho/2 sum_i max(0, g_i(z))^2 (constraints g_i <= 0).
-      const double r1 = g11[l] * z1 + g12[l] * z2 + g13[l] * z3 + g14[l] * z4 + k1[l] +
-                        rho * (smaller(z1, 0.0) + larger(excessU, 0.0));
-      const double r2 = g12[l] * z1 + g22[l] * z2 + g23[l] * z3 + g24[l] * z4 + k2[l] +
-                        rho * (smaller(z2, 0.0) + larger(excessU, 0.0));
-      const double r3 = g13[l] * z1 + g23[l] * z2 + g33[l] * z3 + g34[l] * z4 + k3[l] +
-                        rho * (smaller(z3, 0.0) + larger(excessV, 0.0));
-      const double r4 = g14[l] * z1 + g24[l] * z2 + g34[l] * z3 + g44[l] * z4 + k4[l] +
-                        rho * (smaller(z4, 0.0) + larger(excessV, 0.0));
-      // Generalised Hessian: each violated constraint adds rho grad g_i grad g_i^T.
-      const double pu = excessU > 0.0 ? rho : 0.0;
-      const double pv = excessV > 0.0 ? rho : 0.0;
-      const double h11 = g11[l] + (z1 < 0.0 ? rho : 0.0) + pu + kNewtonShift;
-      const double h22 = g22[l] + (z2 < 0.0 ? rho : 0.0) + pu + kNewtonShift;
-      const double h33 = g33[l] + (z3 < 0.0 ? rho : 0.0) + pv + kNewtonShift;
-      const double h44 = g44[l] + (z4 < 0.0 ? rho : 0.0) + pv + kNewtonShift;
-      const double h12 = g12[l] + pu;
-      const double h34 = g34[l] + pv;
-      const double h13 = g13[l], h14 = g14[l], h23 = g23[l], h24 = g24[l];
-      // H dz = r by 2x2 blocks (u, v), written with adjugates so that the step's dependency
-      // chain holds one division instead of the four of an LDL^T solve (the kernel is
-      // latency-bound: one batch is two or four registers):
-      //   S = det(Huu) Hvv - Huv^T adj(Huu) Huv   (det(Huu) times the Schur complement),
-      //   dz_v = adj(S) (det(Huu) r_v - Huv^T adj(Huu) r_u) / det(S),
-      //   dz_u = adj(Huu) (r_u - Huv dz_v) / det(Huu).
-      const double detUU = h11 * h22 - h12 * h12;
-      const double m11 = h22 * h13 - h12 * h23, m12 = h22 * h14 - h12 * h24;
-      const double m21 = h11 * h23 - h12 * h13, m22 = h11 * h24 - h12 * h14;
-      const double s33 = detUU * h33 - (h13 * m11 + h23 * m21);
-      const double s34 = detUU * h34 - (h13 * m12 + h23 * m22);
-      const double s44 = detUU * h44 - (h14 * m12 + h24 * m22);
-      const double ar1 = h22 * r1 - h12 * r2, ar2 = h11 * r2 - h12 * r1;
-      const double rs3 = detUU * r3 - (h13 * ar1 + h23 * ar2);
-      const double rs4 = detUU * r4 - (h14 * ar1 + h24 * ar2);
-      // One division for both determinants (a division costs as much as a dozen FMAs and
-      // sits on the step's dependency chain); the product stays far inside double range
-      // (entries are O(rho) <= 1e12 in edge-length units: |detUU * detS| < 1e100).
-      const double detS = s33 * s44 - s34 * s34;
-      const double inverseProduct = 1.0 / (detUU * detS);
-      const double inverseDetS = detUU * inverseProduct;
-      const double inverseDetUU = detS * inverseProduct;
-      const double dz3 = (s44 * rs3 - s34 * rs4) * inverseDetS;
-      const double dz4 = (s33 * rs4 - s34 * rs3) * inverseDetS;
-      const double t1 = r1 - h13 * dz3 - h14 * dz4, t2 = r2 - h23 * dz3 - h24 * dz4;
-      const double dz1 = (h22 * t1 - h12 * t2) * inverseDetUU;
-      const double dz2 = (h11 * t2 - h12 * t1) * inverseDetUU;
-      u1[l] = z1 - dz1;
-      u2[l] = z2 - dz2;
-      v1[l] = z3 - dz3;
-      v2[l] = z4 - dz4;
-    }
+  for (int l = 0; l < kLanes; ++l) {
+    c11[l] = g13[l] * g13[l];
+    c12[l] = -2.0 * (g13[l] * g23[l]);
+    c13[l] = g23[l] * g23[l];
+    c21[l] = g13[l] * g14[l];
+    c22[l] = -(g13[l] * g24[l] + g23[l] * g14[l]);
+    c23[l] = g23[l] * g24[l];
+    c31[l] = g14[l] * g14[l];
+    c32[l] = -2.0 * (g14[l] * g24[l]);
+    c33[l] = g24[l] * g24[l];
+  }
+  const NewtonArrays arrays{g11, g12, g13, g14, g22, g23, g24, g33, g34, g44, k1, k2, k3, k4,
+                            c11, c12, c13, c21, c22, c23, c31, c32, c33, u1, u2, v1, v2};
+  for (int step = 0; step < steps; ++step) {
+    if (weights[step] <= kDirectStepWeightLimit)
+      newtonStep<true>(weights[step], arrays);
+    else
+      newtonStep<false>(weights[step], arrays);
   }
 
   // Not `omp simd` here: it would privatise the small structs of the loop body into per-lane
@@ -262,11 +342,7 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
     const Vec3 w = x - y;
     const double distance = std::sqrt(dot(w, w));
     const double lowerBound = larger(separationAlong(w, pair), 0.0);
-    const double longestSquared =
-        larger(larger(larger(dot(pair.a1, pair.a1), dot(pair.a2, pair.a2)),
-                      larger(dot(pair.a2 - pair.a1, pair.a2 - pair.a1), dot(pair.b1, pair.b1))),
-               larger(dot(pair.b2, pair.b2), dot(pair.b2 - pair.b1, pair.b2 - pair.b1)));
-    const double longest = std::sqrt(longestSquared);
+    const double longest = std::sqrt(longestSquared[l]);
     // Written so that a NaN counts as uncertain.
     uncertain |= !(distance - lowerBound <= tightGap * distance + tightGapPerLength * longest);
     result.distance[l] = distance;
@@ -300,7 +376,7 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
 namespace {
 
 template <class PairSource>
-void penaltyDistancesOf(const PairSource& pairs, const PenaltyOptions& options,
+SPACETREE_INLINE_INTO_CLONES void penaltyDistancesOf(const PairSource& pairs, const PenaltyOptions& options,
                         TriangleDistanceResult* results) {
   TrianglePairBatch batch;
   PenaltyBatchResult batchResult;
@@ -309,6 +385,13 @@ void penaltyDistancesOf(const PairSource& pairs, const PenaltyOptions& options,
     penaltyTriangleDistanceBatch(batch, options, batchResult);
     for (int l = 0; l < lanes; ++l) results[begin + std::size_t(l)] = batchResult.lane(l);
   }
+}
+
+// The batching loop compiled per instruction set like the kernel (vectorised loads).
+SPACETREE_DISPATCH_BY_ISA
+void penaltyDistancesOfPackedAllPairs(const PackedAllPairs& pairs, const PenaltyOptions& options,
+                                      TriangleDistanceResult* results) {
+  penaltyDistancesOf(pairs, options, results);
 }
 
 }  // namespace
@@ -327,7 +410,14 @@ void penaltyTriangleDistancesOfAllPairs(const Triangle* first, std::size_t first
                                         const Triangle* second, std::size_t secondCount,
                                         const PenaltyOptions& options,
                                         TriangleDistanceResult* results) {
-  penaltyDistancesOf(AllPairs{first, firstCount, second, secondCount}, options, results);
+  if (firstCount == 0 || secondCount == 0) return;
+  thread_local std::vector<double> buffer;
+  buffer.resize(9 * PackedAllPairs::strideFor(secondCount));
+  PackedAllPairs::pack(second, secondCount, buffer.data());
+  penaltyDistancesOfPackedAllPairs(PackedAllPairs{first, firstCount, second, secondCount,
+                                                  buffer.data(),
+                                                  PackedAllPairs::strideFor(secondCount)},
+                                   options, results);
 }
 
 }  // namespace spacetree::geometry
