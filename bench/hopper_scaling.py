@@ -10,10 +10,13 @@ configurations interleaved in every repetition, medians reported.
 --sizes: grain counts; each becomes a cubic lattice of nx = round(N^(1/3)) grains per side
 (1000 -> nx 10, 10000 -> nx 22 = 10 648 grains); --nx gives the lattice sides directly instead.
 The deck's hopper (top radius 50 mm) takes the lattice up to nx = 11; a larger lattice gets the
-meshes of `make_hopper.py --scale S` with S = the smallest multiple of 0.5 whose hopper top
-holds the lattice's diagonal (nx 22: S = 2), segments and layers multiplied by S (triangles of
-the default size), and the deck's box variables scaled with it (boxr 0.09 S, boxzlo -0.02 S,
-boxzhi above the lattice, zlo 5 mm above the hopper top). nx <= 11 runs the deck's defaults.
+deck's meshes scaled by S, the smallest multiple of 0.5 whose hopper top holds the lattice's
+diagonal (nx 22: S = 2): this script writes them with make_hopper.py
+--segments 32S --layers 5S --cell 0.01/S (triangles of the default size once scaled) and
+multiplies their vertices by S, and scales the deck's box variables with it (box 0.09 S,
+boxzlo -0.02 S, boxzhi above the lattice, zlo 5 mm above the hopper top: hopper outlet radius
+30 mm at z = 80 mm, top radius 100 mm at z = 200 mm, floor 0.24 m wide for S = 2). nx <= 11 runs
+the deck's defaults.
 
 --grids: `none` = the deck's plain `neighbor ... spacetree`; `regular|adaptive|reluctant` add
 `fix tree all spacetree grid TYPE` and `compute treestats` (docs/fix_spacetree.md) after the
@@ -25,13 +28,16 @@ column on the hopper's axis; LIGGGHTS' own choice for the deck's box (`--process
 it in z (1 by 1 by 2 on 2 ranks) where the grains are all above the cut: one rank holds every
 grain and the other waits. `* * 1` cuts through the axis (2 by 1 by 1: half the grains each).
 Otherwise the deck is used unchanged, except `threads ${threads}` appended to its pair_style
-line and two thermo columns (lowest and highest grain centre) for where the grains are.
+line (unless it has a threads keyword already) and two thermo columns (lowest and highest grain
+centre) for where the grains are.
 
 Writes OUT.csv (one row per run: nx, grains, scale, grid, ranks, threads, repeat, loop / pair /
 neigh / comm seconds, neighbour-list builds, seconds per step, the last thermo row's contacts,
 grain heights and treestats values, 1-minute load average before the run, wall and CPU seconds
-of the whole process tree and their ratio = cores the run actually got), OUT_summary.csv
-(medians per configuration, speed-ups) and OUT.png (median seconds per step per configuration,
+of the whole process tree and their ratio = cores the run actually got, and the cores that other
+processes used meanwhile, from /proc/stat: on a shared machine a speed-up is only read from runs
+with others_cores near 0; --wait-busy C waits before each run until the others use at most C
+cores), OUT_summary.csv (medians per configuration, speed-ups) and OUT.png (median seconds per step per configuration,
 split into pair / neigh / rest, one panel per grain count). Runs unchanged on a bigger machine
 (--threads 1,2,4,8 --ranks 1,2,4)."""
 import argparse
@@ -73,18 +79,32 @@ def lattice(nx, spacing=0.006):
     need = (0.5 * spacing * (nx - 1) * math.sqrt(2.0) + 0.003) / 0.05
     s = math.ceil(2.0 * need) / 2.0
     zlo = 0.10 * s + 0.005
-    return s, dict(zlo="%.6g" % zlo, boxr="%.6g" % (0.09 * s), boxzlo="%.6g" % (-0.02 * s),
+    return s, dict(zlo="%.6g" % zlo, box="%.6g" % (0.09 * s), boxzlo="%.6g" % (-0.02 * s),
                    boxzhi="%.6g" % max(0.17 * s, zlo + spacing * (nx - 1) + 0.01))
 
 
+def scale_stl(path, s):
+    """Multiply every vertex of the ASCII STL file `path` by s, in place (17 digits, as written)."""
+    def vertex(m):
+        return m.group(1) + " ".join("%.17g" % (s * float(c)) for c in m.group(2).split())
+    text = open(path).read()
+    with open(path, "w") as f:
+        f.write(re.sub(r"^(\s*vertex\s+)(\S+\s+\S+\s+\S+)", vertex, text, flags=re.M))
+
+
 def meshes(wd, s):
+    """The deck's meshes (make_hopper.py) with every length times s: segments, layers and floor
+    cells multiplied by s first, so that the triangles keep the default size."""
     d = os.path.join(wd, "meshes_s%g" % s)
     if not os.path.isdir(d):
         os.makedirs(d)
-        extra = [] if s == 1.0 else ["--scale", "%g" % s, "--segments", str(int(round(32 * s))),
-                                     "--layers", str(int(round(5 * s)))]
+        extra = [] if s == 1.0 else ["--segments", str(int(round(32 * s))), "--layers", str(int(round(5 * s))),
+                                     "--cell", "%.17g" % (0.01 / s)]
         subprocess.run([sys.executable, os.path.join(HOPPER, "make_hopper.py"), "hopper.stl", "floor.stl"] + extra,
                        cwd=d, check=True, stdout=subprocess.DEVNULL)
+        if s != 1.0:
+            for name in ("hopper.stl", "floor.stl"):
+                scale_stl(os.path.join(d, name), s)
     return d
 
 
@@ -97,7 +117,9 @@ def deck_for(wd, grid, neigh_every, processors):
             sys.exit("in.hopper: expected one '%s' line, found %d" % (prefix, len(hits)))
         return hits[0]
 
-    lines[one("pair_style trimesh")] += " threads ${threads}"
+    pair = one("pair_style trimesh")
+    if " threads " not in lines[pair] + " ":
+        lines[pair] += " threads ${threads}"
     if processors != "deck":
         box = one("region box")
         lines[box:box] = ["processors " + processors]
@@ -135,6 +157,33 @@ def last_thermo(text, columns):
     return dict(zip(columns, row))
 
 
+def cpu_jiffies():
+    """(busy, total) CPU seconds of the whole machine since boot, from /proc/stat (None elsewhere)."""
+    try:
+        with open("/proc/stat") as f:
+            v = [int(x) for x in f.readline().split()[1:]]
+    except OSError:
+        return None
+    hz = os.sysconf("SC_CLK_TCK")
+    idle = v[3] + (v[4] if len(v) > 4 else 0)  # idle + iowait
+    return (sum(v[:8]) - idle) / hz, sum(v[:8]) / hz
+
+
+def wait_idle(a):
+    """Wait (at most --wait-max s) until the machine's other load is below --wait-busy cores over 1 s;
+    returns the busy cores of the last sample (nan without /proc/stat)."""
+    deadline = time.monotonic() + a.wait_max
+    while True:
+        j0 = cpu_jiffies()
+        time.sleep(1.0)
+        j1 = cpu_jiffies()
+        if j0 is None or j1 is None:
+            return float("nan")
+        busy = (j1[0] - j0[0]) / max(1e-9, (j1[1] - j0[1]) / os.cpu_count())
+        if busy <= a.wait_busy or time.monotonic() > deadline:
+            return busy
+
+
 def run(a, wd, cfg, rep):
     nx, s, deckvars, grid, ranks, threads = cfg
     deck, columns = deck_for(wd, grid, a.neigh_every, a.processors)
@@ -150,13 +199,18 @@ def run(a, wd, cfg, rep):
     if ranks > 1 or a.always_mpi:
         cmd = [a.mpiexec] + a.mpiexec_flags.split() + ["-np", str(ranks)] + cmd
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    busy_before = wait_idle(a) if a.wait_busy < os.cpu_count() else float("nan")
     load = os.getloadavg()[0]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    j0 = cpu_jiffies()
     start = time.monotonic()
     subprocess.run(cmd, cwd=wd, check=True, stdout=subprocess.DEVNULL, env=env)
     wall = time.monotonic() - start
+    j1 = cpu_jiffies()
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    # cores that other processes used during the run (machine busy time minus this run's CPU time)
+    others = (j1[0] - j0[0] - cpu) / wall if j0 and j1 else float("nan")
     text = open(log).read()
     loop = float(re.search(r"Loop time of ([0-9.eE+-]+)", text).group(1))
     builds = int(re.search(r"Neighbor list builds = (\d+)", text).group(1))
@@ -165,7 +219,8 @@ def run(a, wd, cfg, rep):
                pair_s=timing(text, "Pair"), neigh_s=timing(text, "Neigh"), comm_s=timing(text, "Comm"),
                builds=builds, s_per_step=loop / a.steps, contacts=int(float(th["v_ncont"])),
                zmin=float(th["v_zmin"]), zmean=float(th["v_zm"]), zmax=float(th["v_zmax"]), load1=load,
-               process_wall_s=wall, process_cpu_s=cpu, cores_used=cpu / wall)
+               busy_before=busy_before, process_wall_s=wall, process_cpu_s=cpu, cores_used=cpu / wall,
+               others_cores=max(0.0, others))
     for name, k in TREESTATS:
         row[name] = float(th["c_ts[%d]" % k]) if grid != "none" else float("nan")
     return row
@@ -173,7 +228,7 @@ def run(a, wd, cfg, rep):
 
 KEYS = ["nx", "grains", "scale", "grid", "ranks", "threads", "repeat", "loop_s", "pair_s", "neigh_s", "comm_s",
         "builds", "s_per_step", "contacts", "zmin", "zmean", "zmax"] + [n for n, _ in TREESTATS] + \
-       ["load1", "process_wall_s", "process_cpu_s", "cores_used"]
+       ["load1", "busy_before", "process_wall_s", "process_cpu_s", "cores_used", "others_cores"]
 
 
 def fmt(v):
@@ -192,6 +247,9 @@ def main():
                     help="N > 0: rebuild the neighbour lists every N steps (neigh_modify every N check no)")
     ap.add_argument("--processors", default="* * 1",
                     help="rank grid of a `processors` line before the box ('deck': none, LIGGGHTS' own choice)")
+    ap.add_argument("--wait-busy", type=float, default=1e9, metavar="CORES",
+                    help="before each run wait until the machine's busy cores (1 s sample) are at most CORES")
+    ap.add_argument("--wait-max", type=float, default=120.0, help="longest wait of --wait-busy, seconds")
     ap.add_argument("--steps", type=int, default=200)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--method", default="hybrid")
@@ -215,9 +273,10 @@ def main():
             row = run(a, wd, cfg, rep)
             rows.append(row)
             print("nx %d (%d grains) grid %s ranks %d threads %d run %d: %.4f s/step (pair %.3f, neigh %.3f of "
-                  "%.3f s, %d builds), %.2f cores used, load %.2f" %
+                  "%.3f s, %d builds), %.2f cores used, others %.2f cores, load %.2f" %
                   (cfg[0], row["grains"], cfg[3], cfg[4], cfg[5], rep, row["s_per_step"], row["pair_s"],
-                   row["neigh_s"], row["loop_s"], row["builds"], row["cores_used"], row["load1"]), flush=True)
+                   row["neigh_s"], row["loop_s"], row["builds"], row["cores_used"], row["others_cores"],
+                   row["load1"]), flush=True)
 
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     with open(a.out + ".csv", "w") as f:
@@ -235,8 +294,8 @@ def main():
         nx, _, _, g, r, t = c
         base = next(b for b in configs if b[0] == nx and b[3] == a.grids[0] and b[4] == a.ranks[0]
                     and b[5] == a.threads[0])
-        m = {k: median(c, k) for k in ("s_per_step", "pair_s", "neigh_s", "loop_s", "builds", "cores_used", "load1",
-                                       "contacts", "zmin", "zmean", "zmax") + tuple(n for n, _ in TREESTATS)}
+        m = {k: median(c, k) for k in ("s_per_step", "pair_s", "neigh_s", "loop_s", "builds", "cores_used", "others_cores",
+                                       "load1", "contacts", "zmin", "zmean", "zmax") + tuple(n for n, _ in TREESTATS)}
         m.update(nx=nx, grains=nx ** 3, grid=g, ranks=r, threads=t, speedup=median(base, "s_per_step") / m["s_per_step"])
         summary.append(m)
         print("median nx %d grid %s ranks %d threads %d: %.4f s/step (pair %.3f, neigh %.3f s), speed-up vs %s "
@@ -244,7 +303,7 @@ def main():
               (nx, g, r, t, m["s_per_step"], m["pair_s"], m["neigh_s"], a.grids[0], a.ranks[0], a.threads[0],
                m["speedup"], m["cores_used"], m["contacts"], m["zmin"], m["zmax"]))
     skeys = ["nx", "grains", "grid", "ranks", "threads", "s_per_step", "speedup", "pair_s", "neigh_s", "loop_s",
-             "builds", "contacts", "zmin", "zmean", "zmax"] + [n for n, _ in TREESTATS] + ["cores_used", "load1"]
+             "builds", "contacts", "zmin", "zmean", "zmax"] + [n for n, _ in TREESTATS] + ["cores_used", "others_cores", "load1"]
     with open(a.out + "_summary.csv", "w") as f:
         f.write(",".join(skeys) + "\n")
         for m in summary:

@@ -3,12 +3,10 @@
 floor slab, both closed and outward-oriented ASCII STL in metres (obstacles of pair_style trimesh
 are closed solids of infinite mass).
 
-  make_hopper.py HOPPER.stl FLOOR.stl [--segments 32] [--layers 5] [--cell 0.01] [--scale 1]
+  make_hopper.py HOPPER.stl FLOOR.stl [--segments 32] [--layers 5] [--cell 0.01]
 
 Hopper: outlet radius 0.015 at z = 0.04, top radius 0.05 at z = 0.10, wall 0.002 thick.
-Floor: the slab [-0.06, 0.06]^2 x [-0.01, 0] (top face at z = 0).
---scale S multiplies every length of both meshes (triangle counts unchanged; the 10 000-grain
-benchmark uses --scale 2 --segments 64 --layers 10 --cell 0.01 for triangles of the default size)."""
+Floor: the slab [-0.06, 0.06]^2 x [-0.01, 0] (top face at z = 0)."""
 import argparse
 import math
 
@@ -86,11 +84,6 @@ def slab(lo, hi, cell):
     return tris
 
 
-def scaled(tris, s):
-    """The triangles with every coordinate multiplied by s (s = 1: the same values, bit for bit)."""
-    return tris if s == 1.0 else [tuple(tuple(s * c for c in v) for v in t) for t in tris]
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("hopper")
@@ -98,10 +91,9 @@ def main():
     ap.add_argument("--segments", type=int, default=32)
     ap.add_argument("--layers", type=int, default=5)
     ap.add_argument("--cell", type=float, default=0.01, help="floor grid cell size")
-    ap.add_argument("--scale", type=float, default=1.0, help="multiply every length of both meshes")
     a = ap.parse_args()
-    write_stl(a.hopper, scaled(hopper(a.segments, a.layers), a.scale))
-    write_stl(a.floor, scaled(slab((-0.06, -0.06, -0.01), (0.06, 0.06, 0.0), a.cell / a.scale), a.scale))
+    write_stl(a.hopper, hopper(a.segments, a.layers))
+    write_stl(a.floor, slab((-0.06, -0.06, -0.01), (0.06, 0.06, 0.0), a.cell))
 
 
 if __name__ == "__main__":
