@@ -328,7 +328,7 @@ def main():
         ax.set_xticklabels(["%s\n%dr x %dt" % (m["grid"], m["ranks"], m["threads"]) for m in ms], fontsize=7)
         ax.set_title("%d grains (nx %d)" % (nx ** 3, nx), fontsize=9)
         ax.set_ylabel("wall s per step (median of %d)" % a.repeats)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="lower right", framealpha=0.9)
     fig.suptitle("hopper deck, %d steps%s: grids, MPI ranks, pair_style trimesh threads" %
                  (a.steps, ", lists rebuilt every %d" % a.neigh_every if a.neigh_every else ""), fontsize=9)
     fig.tight_layout()
