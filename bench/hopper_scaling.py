@@ -45,6 +45,7 @@ import math
 import os
 import re
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -258,6 +259,7 @@ def main():
     ap.add_argument("--always-mpi", action="store_true", help="start 1-rank runs through mpiexec too")
     ap.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                     help="further deck variable, e.g. --var zlo=0.05 --var v0=2.0 (repeatable, wins over presets)")
+    ap.add_argument("--keep", action="store_true", help="keep the working directory (decks, logs, meshes)")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "hopper_scaling"))
     a = ap.parse_args()
 
@@ -268,21 +270,20 @@ def main():
         s, deckvars = lattice(nx)
         configs += [(nx, s, deckvars, g, r, t) for g in a.grids for r in a.ranks for t in a.threads]
     rows = []
+    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     for rep in range(a.repeats):
         for cfg in configs:
             row = run(a, wd, cfg, rep)
             rows.append(row)
+            with open(a.out + ".csv", "w") as f:  # after every run: an interrupted sweep keeps its rows
+                f.write(",".join(KEYS) + "\n")
+                for r in rows:
+                    f.write(",".join(fmt(r[k]) for k in KEYS) + "\n")
             print("nx %d (%d grains) grid %s ranks %d threads %d run %d: %.4f s/step (pair %.3f, neigh %.3f of "
                   "%.3f s, %d builds), %.2f cores used, others %.2f cores, load %.2f" %
                   (cfg[0], row["grains"], cfg[3], cfg[4], cfg[5], rep, row["s_per_step"], row["pair_s"],
                    row["neigh_s"], row["loop_s"], row["builds"], row["cores_used"], row["others_cores"],
                    row["load1"]), flush=True)
-
-    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
-    with open(a.out + ".csv", "w") as f:
-        f.write(",".join(KEYS) + "\n")
-        for row in rows:
-            f.write(",".join(fmt(row[k]) for k in KEYS) + "\n")
 
     def median(c, k):
         """Median of column k over the repetitions of configuration c (nx, grid, ranks, threads)."""
@@ -334,6 +335,10 @@ def main():
     fig.tight_layout()
     fig.savefig(a.out + ".png", dpi=120)
     print("wrote %s.csv, %s_summary.csv, %s.png" % (a.out, a.out, a.out))
+    if a.keep:
+        print("runs in", wd)
+    else:
+        shutil.rmtree(wd)
 
 
 if __name__ == "__main__":
