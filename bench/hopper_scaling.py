@@ -200,6 +200,8 @@ def run(a, wd, cfg, rep):
     if ranks > 1 or a.always_mpi:
         cmd = [a.mpiexec] + a.mpiexec_flags.split() + ["-np", str(ranks)] + cmd
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    if a.keep:
+        print("(in %s) %s" % (wd, " ".join(cmd)), flush=True)
     busy_before = wait_idle(a) if a.wait_busy < os.cpu_count() else float("nan")
     load = os.getloadavg()[0]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -259,7 +261,7 @@ def main():
     ap.add_argument("--always-mpi", action="store_true", help="start 1-rank runs through mpiexec too")
     ap.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                     help="further deck variable, e.g. --var zlo=0.05 --var v0=2.0 (repeatable, wins over presets)")
-    ap.add_argument("--keep", action="store_true", help="keep the working directory (decks, logs, meshes)")
+    ap.add_argument("--keep", action="store_true", help="keep the working directory (decks, logs, meshes) and print every run's command line")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "hopper_scaling"))
     a = ap.parse_args()
 
