@@ -4,9 +4,13 @@ floor slab, both closed and outward-oriented ASCII STL in metres (obstacles of p
 are closed solids of infinite mass).
 
   make_hopper.py HOPPER.stl FLOOR.stl [--segments 32] [--layers 5] [--cell 0.01]
+                [--outlet-radius 0.015] [--lift 0] [--floor-half 0.06]
 
-Hopper: outlet radius 0.015 at z = 0.04, top radius 0.05 at z = 0.10, wall 0.002 thick.
-Floor: the slab [-0.06, 0.06]^2 x [-0.01, 0] (top face at z = 0)."""
+Hopper (defaults): outlet radius 0.015 at z = 0.04, top radius 0.05 at z = 0.10, wall 0.002 thick.
+`--lift H` moves the hopper up by H (outlet at z = 0.04 + H).
+Floor (defaults): the slab [-0.06, 0.06]^2 x [-0.01, 0] (top face at z = 0).
+The defaults write the meshes of the regression deck; the pile run (README) uses a wider outlet
+and a wider floor."""
 import argparse
 import math
 
@@ -91,9 +95,18 @@ def main():
     ap.add_argument("--segments", type=int, default=32)
     ap.add_argument("--layers", type=int, default=5)
     ap.add_argument("--cell", type=float, default=0.01, help="floor grid cell size")
+    ap.add_argument("--outlet-radius", type=float, default=0.015, help="inner radius at the outlet (m)")
+    ap.add_argument("--lift", type=float, default=0.0, help="raise the hopper by this height (m)")
+    ap.add_argument("--floor-half", type=float, default=0.06, help="half width of the floor slab (m)")
     a = ap.parse_args()
-    write_stl(a.hopper, hopper(a.segments, a.layers))
-    write_stl(a.floor, slab((-0.06, -0.06, -0.01), (0.06, 0.06, 0.0), a.cell))
+    if not 0 < a.outlet_radius < 0.05:
+        ap.error("--outlet-radius must lie in (0, 0.05), the top radius")
+    if a.floor_half <= 0:
+        ap.error("--floor-half must be > 0")
+    write_stl(a.hopper, hopper(a.segments, a.layers, r_out=a.outlet_radius,
+                               z_out=0.04 + a.lift, z_top=0.10 + a.lift))
+    h = a.floor_half
+    write_stl(a.floor, slab((-h, -h, -0.01), (h, h, 0.0), a.cell))
 
 
 if __name__ == "__main__":
