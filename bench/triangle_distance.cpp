@@ -6,8 +6,10 @@
 //
 // Usage: bench_triangle_distance [--out FILE.csv] [--triangles 12,40,...] [--orientations N]
 //                                [--min-seconds S] [--contact-distance T] [--iterations 4,8]
-//                                [--pipeline-out FILE.csv]
-// Writes one CSV row per (triangles, method) (--out "" skips this part);
+//                                [--continuations 4] [--pipeline-out FILE.csv]
+// Writes one CSV row per (triangles, method) (--out "" skips this part); for every iteration
+// count K and continuation count C a two-stage hybrid row "hybrid2+C" (K stage-1 steps, C more
+// for the pairs stage 1 leaves uncertified; HybridOptions::continuationIterations);
 // bench/plot_triangle_distance.py plots it.
 // Second part (--pipeline-out, "" to skip): the whole contact search of contact/MeshContact.h
 // on the same kind of scenes (bounding-sphere precheck, triangle pruning, the method on the
@@ -339,7 +341,8 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--pipeline-out")) settings.pipelineOut = value("--pipeline-out");
     else {
       std::fprintf(stderr, "usage: %s [--out FILE] [--triangles a,b,...] [--orientations N] "
-                           "[--min-seconds S] [--contact-distance T] [--iterations 4,8] [--pipeline-out FILE]\n", argv[0]);
+                           "[--min-seconds S] [--contact-distance T] [--iterations 4,8] [--continuations 4] "
+                           "[--pipeline-out FILE]\n", argv[0]);
       return 2;
     }
   }
