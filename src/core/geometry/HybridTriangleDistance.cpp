@@ -1,5 +1,6 @@
 #include "geometry/HybridTriangleDistance.h"
 
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -103,6 +104,10 @@ SPACETREE_INLINE_INTO_CLONES void hybridDistancesOf(const PairSource& pairs, con
           ? penaltyWeightSchedule(options.newtonIterations + continuation) +
                 options.newtonIterations
           : nullptr;
+  // Two-stage: stage 1 takes the cheap separating-axis bound only (no feature bounds); a lane
+  // it leaves loose continues in stage 2, whose certification has the feature bounds.
+  PenaltyOptions stage1Options = penaltyOptions;
+  if (continuation > 0) stage1Options.tightGap = std::numeric_limits<double>::infinity();
   HybridStatistics counts;
   counts.pairs = count;
 
@@ -111,7 +116,7 @@ SPACETREE_INLINE_INTO_CLONES void hybridDistancesOf(const PairSource& pairs, con
   ContinuationQueue queue;
   for (std::size_t begin = 0; begin < count; begin += kTrianglePairBatchSize) {
     const int lanes = pairs.loadBatch(batch, begin);
-    penaltyTriangleDistanceBatch(batch, penaltyOptions, penalty);
+    penaltyTriangleDistanceBatch(batch, stage1Options, penalty);
     // The acceptance tests for the whole batch first (branch-free), then the results.
     int verdict[kTrianglePairBatchSize];
     verdictsOf(penalty, options, verdict);

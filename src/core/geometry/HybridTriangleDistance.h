@@ -30,7 +30,9 @@ struct HybridOptions {
   // too large residual are gathered into new batches and continue from their last iterate for
   // this many steps, with the last continuationIterations weights of the
   // (newtonIterations + continuationIterations)-step schedule; they are certified by the same
-  // rule, the rest falls back. newtonIterations + continuationIterations <= 32.
+  // rule, the rest falls back. Stage 1 then computes only the cheap lower bound (no feature
+  // bounds): a pair it leaves loose continues, and stage 2 has the feature bounds.
+  // newtonIterations + continuationIterations <= 32.
   int continuationIterations = 0;
 };
 
