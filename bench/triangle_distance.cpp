@@ -160,6 +160,7 @@ std::vector<Method> methods(double threshold, const std::vector<int>& iterationC
     HybridOptions hybrid;
     hybrid.contactDistance = threshold;
     hybrid.newtonIterations = iterations;
+    hybrid.continuationIterations = 0;  // single stage
     m.push_back({"hybrid", iterations,
                  [threshold, hybrid](const Scene& s, auto& block, HybridStatistics& stats,
                                      auto* decisions) {
