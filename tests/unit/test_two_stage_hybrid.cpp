@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "geometry/HybridTriangleDistance.h"
@@ -201,6 +202,11 @@ TEST(TwoStageHybrid, EveryResultIsTheStageOneTheStageTwoOrTheExactOne) {
   EXPECT_LE(onceStatistics.fallbacks(), e.continued);
   EXPECT_LT(statistics.fallbacks(), onceStatistics.fallbacks());
   EXPECT_EQ(onceStatistics.continued, 0u);
+  // Schedules past the weight table are rejected, not truncated.
+  HybridOptions tooLong = o;
+  tooLong.continuationIterations = kMaxNewtonIterations - o.newtonIterations + 1;
+  EXPECT_THROW(hybridTriangleDistances(first.data(), second.data(), 16, tooLong, once.data()),
+               std::invalid_argument);
 }
 
 TEST(TwoStageHybrid, AllPairsFormsAgreeAndContactDecisionsEqualExact) {
