@@ -37,21 +37,30 @@ def main():
     fig, (speed, hybrid) = plt.subplots(1, 2, figsize=(12, 4.8))
     fallback = hybrid.twinx()
     styles = {"exact": ("k", "o"), "penalty": ("tab:blue", "s"), "hybrid": ("tab:red", "^")}
+    # Two-stage hybrids ("hybrid2+C": C stage-2 steps after the row's stage-1 steps).
+    for method, _ in series:
+        if method.startswith("hybrid2"):
+            styles[method] = ("tab:purple", "v")
     for (method, iterations), rows in sorted(series.items()):
         rows.sort(key=lambda r: int(r["triangles_per_particle"]))
         color, marker = styles.get(method, ("gray", "x"))
-        label = method if method == "exact" else f"{method}, {iterations} Newton steps"
+        if method.startswith("hybrid2+"):
+            steps = f"{iterations}+{method[len('hybrid2+'):]}"
+            label = f"two-stage hybrid, {steps} Newton steps"
+        else:
+            steps = str(iterations)
+            label = method if method == "exact" else f"{method}, {iterations} Newton steps"
         dashes = {0: "-", 8: "-", 6: ":", 4: "--"}.get(iterations, "-.")
         speed.plot(column(rows, "triangles_per_particle"), column(rows, "pairs_per_second"),
                    dashes, color=color, marker=marker, label=label)
-        if method == "hybrid":
+        if method.startswith("hybrid"):
             hybrid.plot(column(rows, "triangles_per_particle"), column(rows, "speedup_vs_exact"),
                         dashes, color=color, marker=marker,
-                        label=f"speed-up over exact, {iterations} steps")
+                        label=f"speed-up over exact, {steps} steps")
             fallback.plot(column(rows, "triangles_per_particle"),
                           [100 * v for v in column(rows, "fallback_fraction")], dashes,
                           color="tab:green", marker=marker, alpha=0.8,
-                          label=f"fallback, {iterations} steps")
+                          label=f"fallback, {steps} steps")
 
     speed.set_xscale("log")
     speed.set_yscale("log")
@@ -92,7 +101,12 @@ def plot_pipeline(source, styles):
         rows.sort(key=lambda r: int(r["triangles_per_particle"]))
         color, marker = styles.get(method, ("gray", "x"))
         dashes = {0: "-", 8: "-", 6: ":", 4: "--"}.get(iterations, "-.")
-        label = method if method == "exact" else f"{method}, {iterations} Newton steps"
+        if method.startswith("hybrid2+"):
+            steps = f"{iterations}+{method[len('hybrid2+'):]}"
+            label = f"two-stage hybrid, {steps} Newton steps"
+        else:
+            steps = str(iterations)
+            label = method if method == "exact" else f"{method}, {iterations} Newton steps"
         x = [int(r["triangles_per_particle"]) for r in rows]
         cost.plot(x, [float(r["us_per_particle_pair"]) for r in rows], dashes, color=color,
                   marker=marker, label=label)

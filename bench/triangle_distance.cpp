@@ -6,8 +6,10 @@
 //
 // Usage: bench_triangle_distance [--out FILE.csv] [--triangles 12,40,...] [--orientations N]
 //                                [--min-seconds S] [--contact-distance T] [--iterations 4,8]
-//                                [--pipeline-out FILE.csv]
-// Writes one CSV row per (triangles, method) (--out "" skips this part);
+//                                [--continuations 4] [--pipeline-out FILE.csv]
+// Writes one CSV row per (triangles, method) (--out "" skips this part); for every iteration
+// count K and continuation count C a two-stage hybrid row "hybrid2+C" (K stage-1 steps, C more
+// for the pairs stage 1 leaves uncertified; HybridOptions::continuationIterations);
 // bench/plot_triangle_distance.py plots it.
 // Second part (--pipeline-out, "" to skip): the whole contact search of contact/MeshContact.h
 // on the same kind of scenes (bounding-sphere precheck, triangle pruning, the method on the
@@ -48,6 +50,7 @@ struct Settings {
   double minSeconds = 0.5;     // per method and size: thread CPU time measured over all rounds
   double contactDistance = 0.02;  // 2 eps for spheres of radius 1
   std::vector<int> iterations = {4, 8};  // Newton steps of the penalty and hybrid runs
+  std::vector<int> continuations = {4};  // stage-2 steps of the two-stage hybrid runs
   std::string pipelineOut = "bench/results/mesh_contact.csv";  // "" skips the pipeline part
 };
 
@@ -133,7 +136,8 @@ struct Method {
       run;
 };
 
-std::vector<Method> methods(double threshold, const std::vector<int>& iterationCounts) {
+std::vector<Method> methods(double threshold, const std::vector<int>& iterationCounts,
+                            const std::vector<int>& continuations) {
   std::vector<Method> m;
   m.push_back({"exact", 0, [threshold](const Scene& s, auto& block, auto&, auto* decisions) {
                  return sweep(s, block, threshold, decisions,
@@ -156,6 +160,7 @@ std::vector<Method> methods(double threshold, const std::vector<int>& iterationC
     HybridOptions hybrid;
     hybrid.contactDistance = threshold;
     hybrid.newtonIterations = iterations;
+    hybrid.continuationIterations = 0;  // single stage
     m.push_back({"hybrid", iterations,
                  [threshold, hybrid](const Scene& s, auto& block, HybridStatistics& stats,
                                      auto* decisions) {
@@ -166,6 +171,22 @@ std::vector<Method> methods(double threshold, const std::vector<int>& iterationC
                                                                     out, &stats);
                                 });
                  }});
+    // Two-stage hybrid: `iterations` steps for all pairs, `continuation` more for the
+    // uncertified ones.
+    for (int continuation : continuations) {
+    HybridOptions twoStage = hybrid;
+    twoStage.continuationIterations = continuation;
+    m.push_back({"hybrid2+" + std::to_string(continuation), iterations,
+                 [threshold, twoStage](const Scene& s, auto& block, HybridStatistics& stats,
+                                       auto* decisions) {
+                   return sweep(s, block, threshold, decisions,
+                                [&](const Triangle* rows, std::size_t n, auto* out) {
+                                  hybridTriangleDistancesOfAllPairs(rows, n, s.second.data(),
+                                                                    s.second.size(), twoStage,
+                                                                    out, &stats);
+                                });
+                 }});
+    }
   }
   return m;
 }
@@ -207,7 +228,7 @@ void runPipeline(const Settings& settings) {
   }
   csv << "triangles_per_particle,method,newton_iterations,us_per_particle_pair,"
          "triangle_pairs_checked,pruned_fraction,fallback_fraction,contacts,speedup_vs_exact\n";
-  std::printf("\ncontact pipeline (MeshContactFinder), per particle pair:\n%-6s %-8s %3s %10s %9s %8s %9s %8s %8s\n",
+  std::printf("\ncontact pipeline (MeshContactFinder), per particle pair:\n%-6s %-10s %3s %10s %9s %8s %9s %8s %8s\n",
               "tri", "method", "it", "us/pair", "checked", "pruned", "fallback", "contacts", "speedup");
   std::mt19937_64 rng(4048);
   std::normal_distribution<double> n;
@@ -291,7 +312,7 @@ void runPipeline(const Settings& settings) {
       const char* name = triangleDistanceMethodName(runs[m].method);
       csv << shape.triangleCount() << ',' << name << ',' << runs[m].iterations << ',' << us[m] << ','
           << checked << ',' << pruned << ',' << fallback << ',' << perScene << ',' << us[0] / us[m] << '\n';
-      std::printf("%-6zu %-8s %3d %10.2f %9.0f %7.2f%% %8.3f%% %8.2f %7.2fx\n", shape.triangleCount(), name,
+      std::printf("%-6zu %-10s %3d %10.2f %9.0f %7.2f%% %8.3f%% %8.2f %7.2fx\n", shape.triangleCount(), name,
                   runs[m].iterations, us[m], checked, 100 * pruned, 100 * fallback, perScene, us[0] / us[m]);
       std::fflush(stdout);
     }
@@ -317,10 +338,12 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--min-seconds")) settings.minSeconds = std::atof(value("--min-seconds"));
     else if (!std::strcmp(argv[i], "--contact-distance")) settings.contactDistance = std::atof(value("--contact-distance"));
     else if (!std::strcmp(argv[i], "--iterations")) settings.iterations = parseList(value("--iterations"));
+    else if (!std::strcmp(argv[i], "--continuations")) settings.continuations = parseList(value("--continuations"));
     else if (!std::strcmp(argv[i], "--pipeline-out")) settings.pipelineOut = value("--pipeline-out");
     else {
       std::fprintf(stderr, "usage: %s [--out FILE] [--triangles a,b,...] [--orientations N] "
-                           "[--min-seconds S] [--contact-distance T] [--iterations 4,8] [--pipeline-out FILE]\n", argv[0]);
+                           "[--min-seconds S] [--contact-distance T] [--iterations 4,8] [--continuations 4] "
+                           "[--pipeline-out FILE]\n", argv[0]);
       return 2;
     }
   }
@@ -338,10 +361,10 @@ int main(int argc, char** argv) {
   csv << "triangles_per_particle,method,newton_iterations,pairs_per_scene,ns_per_pair,"
          "pairs_per_second,fallback_fraction,contacts_per_scene,decisions_equal_exact,"
          "speedup_vs_exact,isa\n";
-  std::printf("%-6s %-8s %3s %10s %10s %14s %10s %8s %8s\n", "tri", "method", "it", "pairs",
+  std::printf("%-6s %-10s %3s %10s %10s %14s %10s %8s %8s\n", "tri", "method", "it", "pairs",
               "ns/pair", "pairs/s", "fallback", "contacts", "speedup");
 
-  const std::vector<Method> all = methods(settings.contactDistance, settings.iterations);
+  const std::vector<Method> all = methods(settings.contactDistance, settings.iterations, settings.continuations);
   std::mt19937_64 rng(2024);
   for (int requested : settings.triangles) {
     const std::vector<Triangle> mesh = latitudeLongitudeSphereWithAbout(requested, 1.0);
@@ -391,13 +414,13 @@ int main(int argc, char** argv) {
       const double ns = median(roundNs[m]);
       const bool decisionsEqual = decisions[m] == decisions[exactIndex];
       const double contactsPerScene = double(contacts[m]) / double(scenes.size());
-      const bool isHybrid = method.name == "hybrid";
+      const bool isHybrid = method.name.compare(0, 6, "hybrid") == 0;
       const double fallback = isHybrid ? stats[m].fallbackFraction() : 0.0;
       csv << mesh.size() << ',' << method.name << ',' << method.newtonIterations << ','
           << pairsPerScene << ',' << ns << ',' << 1e9 / ns << ',' << fallback << ','
           << contactsPerScene << ',' << (decisionsEqual ? "yes" : "no") << ','
           << exactNs / ns << ',' << isa << '\n';
-      std::printf("%-6zu %-8s %3d %10zu %10.1f %14.3e %9.3f%% %8.1f %7.2fx%s\n", mesh.size(),
+      std::printf("%-6zu %-10s %3d %10zu %10.1f %14.3e %9.3f%% %8.1f %7.2fx%s\n", mesh.size(),
                   method.name.c_str(), method.newtonIterations, pairsPerScene, ns, 1e9 / ns,
                   100 * fallback, contactsPerScene, exactNs / ns,
                   isHybrid && !decisionsEqual ? "  DECISIONS DIFFER FROM EXACT" : "");

@@ -245,6 +245,7 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
       geometry::HybridOptions hybrid;
       hybrid.contactDistance = contactDistance;
       hybrid.newtonIterations = options_.newtonIterations;
+      hybrid.continuationIterations = 0;  // single stage of K steps, as `iterations K` says
       geometry::HybridStatistics hybridCounts;
       geometry::hybridTriangleDistances(pairFirst_.data(), pairSecond_.data(), pairs, hybrid,
                                         results_.data(), &hybridCounts);

@@ -1,5 +1,7 @@
 #include "geometry/HybridTriangleDistance.h"
 
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "geometry/IsaDispatch.h"
@@ -10,50 +12,133 @@
 namespace spacetree::geometry {
 namespace {
 
+// The acceptance tests of the header for all lanes (branch-free): 0 accepted, 1 residual,
+// 2 contact band fallback.
+SPACETREE_INLINE_INTO_CLONES void verdictsOf(const PenaltyBatchResult& penalty,
+                                             const HybridOptions& options, int* verdict) {
+  const double relativeTolerance = options.relativeTolerance;
+  const double lengthScaleTolerance = options.lengthScaleTolerance;
+  const double threshold = options.contactDistance;
+  const bool band = threshold > 0.0;
+  for (int l = 0; l < kTrianglePairBatchSize; ++l) {
+    const double upper = penalty.distance[l];
+    const double lower = penalty.lowerBound[l];
+    const double h = penalty.lengthScale[l];
+    // Written so that a NaN anywhere fails the check and falls back.
+    const bool accurate = upper - lower <= relativeTolerance * upper + lengthScaleTolerance * h;
+    const double slack = kRoundingSlack * (upper + 2.0 * h);
+    const bool straddlesThreshold =
+        band & (lower - slack < threshold) & (upper + slack >= threshold);
+    verdict[l] = accurate ? (straddlesThreshold ? 2 : 0) : 1;
+  }
+}
+
+// Stage 2 of the two-stage hybrid: the pairs whose stage-1 residual was too large, gathered
+// (compacted) from any number of stage-1 batches into full batches, with their last iterates.
+struct ContinuationQueue {
+  TrianglePairBatch batch{};
+  alignas(64) double start[4][kTrianglePairBatchSize] = {};
+  std::size_t index[kTrianglePairBatchSize] = {};
+  int size = 0;
+
+  void push(const TrianglePairBatch& from, const PenaltyBatchResult& stage1, int l,
+            std::size_t k) {
+    for (int t = 0; t < 2; ++t)
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c) batch.coordinate[t][v][c][size] = from.coordinate[t][v][c][l];
+    for (int i = 0; i < 4; ++i) start[i][size] = stage1.iterate[i][l];
+    index[size] = k;
+    ++size;
+  }
+};
+
+template <class PairSource>
+SPACETREE_INLINE_INTO_CLONES void continueQueued(const PairSource& pairs, ContinuationQueue& queue,
+                                                 const double* weights, int steps,
+                                                 const PenaltyOptions& penaltyOptions,
+                                                 const HybridOptions& options,
+                                                 TriangleDistanceResult* results,
+                                                 HybridStatistics& counts) {
+  if (queue.size == 0) return;
+  // Lanes past the end of a partial batch repeat lane 0 (valid input, results unused).
+  for (int l = queue.size; l < kTrianglePairBatchSize; ++l) {
+    for (int t = 0; t < 2; ++t)
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c)
+          queue.batch.coordinate[t][v][c][l] = queue.batch.coordinate[t][v][c][0];
+    for (int i = 0; i < 4; ++i) queue.start[i][l] = queue.start[i][0];
+  }
+  PenaltyBatchResult penalty;
+  penaltyTriangleDistanceBatchContinued(queue.batch, weights, steps, queue.start, penaltyOptions,
+                                        penalty);
+  int verdict[kTrianglePairBatchSize];
+  verdictsOf(penalty, options, verdict);
+  counts.continued += std::size_t(queue.size);
+  for (int l = 0; l < queue.size; ++l) {
+    const std::size_t k = queue.index[l];
+    if (verdict[l] == 0) {
+      results[k] = penalty.lane(l);
+    } else {
+      ++(verdict[l] == 2 ? counts.contactBandFallbacks : counts.residualFallbacks);
+      results[k] = triangleDistance(pairs.first(k), pairs.second(k));
+    }
+  }
+  queue.size = 0;
+}
+
 template <class PairSource>
 SPACETREE_INLINE_INTO_CLONES void hybridDistancesOf(const PairSource& pairs, const HybridOptions& options,
                        TriangleDistanceResult* results, HybridStatistics* statistics) {
   const std::size_t count = pairs.count();
+  const int continuation = options.continuationIterations;
+  if (options.newtonIterations < 1 || continuation < 0 ||
+      options.newtonIterations + continuation > kMaxNewtonIterations)
+    throw std::invalid_argument("hybridTriangleDistances: Newton iterations out of range");
   PenaltyOptions penaltyOptions;
   penaltyOptions.newtonIterations = options.newtonIterations;
   penaltyOptions.tightGap = options.relativeTolerance;
   penaltyOptions.tightGapPerLength = options.lengthScaleTolerance;
-  const double threshold = options.contactDistance;
+  // Stage 2 continues with the tail of the (stage 1 + stage 2)-step schedule.
+  const double* continuationWeights =
+      continuation > 0
+          ? penaltyWeightSchedule(options.newtonIterations + continuation) +
+                options.newtonIterations
+          : nullptr;
+  // Two-stage: stage 1 takes the cheap separating-axis bound only (no feature bounds); a lane
+  // it leaves loose continues in stage 2, whose certification has the feature bounds.
+  PenaltyOptions stage1Options = penaltyOptions;
+  if (continuation > 0) stage1Options.tightGap = std::numeric_limits<double>::infinity();
   HybridStatistics counts;
   counts.pairs = count;
 
-  const double relativeTolerance = options.relativeTolerance;
-  const double lengthScaleTolerance = options.lengthScaleTolerance;
-  const bool band = threshold > 0.0;
   TrianglePairBatch batch;
   PenaltyBatchResult penalty;
+  ContinuationQueue queue;
   for (std::size_t begin = 0; begin < count; begin += kTrianglePairBatchSize) {
     const int lanes = pairs.loadBatch(batch, begin);
-    penaltyTriangleDistanceBatch(batch, penaltyOptions, penalty);
+    penaltyTriangleDistanceBatch(batch, stage1Options, penalty);
     // The acceptance tests for the whole batch first (branch-free), then the results.
-    int verdict[kTrianglePairBatchSize];  // 0 accepted, 1 residual, 2 contact band fallback
-    for (int l = 0; l < kTrianglePairBatchSize; ++l) {
-      const double upper = penalty.distance[l];
-      const double lower = penalty.lowerBound[l];
-      const double h = penalty.lengthScale[l];
-      // Written so that a NaN anywhere fails the check and falls back.
-      const bool accurate =
-          upper - lower <= relativeTolerance * upper + lengthScaleTolerance * h;
-      const double slack = kRoundingSlack * (upper + 2.0 * h);
-      const bool straddlesThreshold =
-          band & (lower - slack < threshold) & (upper + slack >= threshold);
-      verdict[l] = accurate ? (straddlesThreshold ? 2 : 0) : 1;
-    }
+    int verdict[kTrianglePairBatchSize];
+    verdictsOf(penalty, options, verdict);
     // Every lane's penalty result first (a branch-free copy), then the fallbacks over it.
     TriangleDistanceResult* out = results + begin;
     for (int l = 0; l < lanes; ++l) out[l] = penalty.lane(l);
     for (int l = 0; l < lanes; ++l) {
       if (verdict[l] == 0) continue;
       const std::size_t k = begin + std::size_t(l);
+      if (verdict[l] == 1 && continuation > 0) {
+        queue.push(batch, penalty, l, k);
+        if (queue.size == kTrianglePairBatchSize)
+          continueQueued(pairs, queue, continuationWeights, continuation, penaltyOptions,
+                         options, results, counts);
+        continue;
+      }
       ++(verdict[l] == 2 ? counts.contactBandFallbacks : counts.residualFallbacks);
       results[k] = triangleDistance(pairs.first(k), pairs.second(k));
     }
   }
+  continueQueued(pairs, queue, continuationWeights, continuation, penaltyOptions, options,
+                 results, counts);
   if (statistics) *statistics += counts;
 }
 

@@ -206,13 +206,13 @@ SPACETREE_INLINE_INTO_CLONES void newtonStep(const double rho, const NewtonArray
 
 }  // namespace
 
-SPACETREE_DISPATCH_BY_ISA
-void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyOptions& options,
-                                  PenaltyBatchResult& result) {
-  const int steps = options.newtonIterations;
-  if (steps < 1 || steps > kMaxNewtonIterations)
-    throw std::invalid_argument("penaltyTriangleDistanceBatch: newtonIterations out of range");
-  const double* weights = penaltyWeights(steps);
+// The kernel body: `steps` Newton steps with weights[0, steps) from `start` (the centroids when
+// null), then the admissible points and their bounds.
+SPACETREE_INLINE_INTO_CLONES void runPenaltyBatch(const TrianglePairBatch& batch,
+                                                  const double* weights, const int steps,
+                                                  const double (*start)[kLanes],
+                                                  const PenaltyOptions& options,
+                                                  PenaltyBatchResult& result) {
 
   const auto& P = batch.coordinate;
   // Geometry relative to the first triangle's vertex 0: a1, a2 edges of A, b0 offset of B,
@@ -276,6 +276,15 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
     // saves no Newton step on random or sphere-contact pairs.)
     u1[l] = u2[l] = v1[l] = v2[l] = 1.0 / 3.0;
   }
+  if (start) {
+#pragma omp simd
+    for (int l = 0; l < kLanes; ++l) {
+      u1[l] = start[0][l];
+      u2[l] = start[1][l];
+      v1[l] = start[2][l];
+      v2[l] = start[3][l];
+    }
+  }
 
   // Constant products of the off-diagonal block Huv = G_uv (the penalty only touches the
   // diagonal blocks): with them the Schur complement costs 12 multiply-adds per step, not 17.
@@ -321,6 +330,11 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
 #pragma GCC ivdep
 #endif
   for (int l = 0; l < kLanes; ++l) {
+    // The iterate itself, for a continuation (penaltyTriangleDistanceBatchContinued).
+    result.iterate[0][l] = u1[l];
+    result.iterate[1][l] = u2[l];
+    result.iterate[2][l] = v1[l];
+    result.iterate[3][l] = v2[l];
     // Admissible parameters: clamp to the quadrant, then scale back into the simplex.
     double z1 = larger(u1[l], 0.0), z2 = larger(u2[l], 0.0);
     double z3 = larger(v1[l], 0.0), z4 = larger(v2[l], 0.0);
@@ -371,6 +385,32 @@ void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyO
                       separationAlong(cross(pair.b1, pair.b2), pair)));
     result.lowerBound[l] = larger(result.lowerBound[l], featureBound);
   }
+}
+
+SPACETREE_DISPATCH_BY_ISA
+void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyOptions& options,
+                                  PenaltyBatchResult& result) {
+  const int steps = options.newtonIterations;
+  if (steps < 1 || steps > kMaxNewtonIterations)
+    throw std::invalid_argument("penaltyTriangleDistanceBatch: newtonIterations out of range");
+  runPenaltyBatch(batch, penaltyWeights(steps), steps, nullptr, options, result);
+}
+
+SPACETREE_DISPATCH_BY_ISA
+void penaltyTriangleDistanceBatchContinued(const TrianglePairBatch& batch, const double* weights,
+                                           int steps,
+                                           const double (*start)[kTrianglePairBatchSize],
+                                           const PenaltyOptions& options,
+                                           PenaltyBatchResult& result) {
+  if (steps < 1 || steps > kMaxNewtonIterations)
+    throw std::invalid_argument("penaltyTriangleDistanceBatchContinued: steps out of range");
+  runPenaltyBatch(batch, weights, steps, start, options, result);
+}
+
+const double* penaltyWeightSchedule(int steps) {
+  if (steps < 1 || steps > kMaxNewtonIterations)
+    throw std::invalid_argument("penaltyWeightSchedule: steps out of range");
+  return penaltyWeights(steps);
 }
 
 namespace {

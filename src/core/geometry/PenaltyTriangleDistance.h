@@ -42,6 +42,9 @@ struct PenaltyBatchResult {
   alignas(64) double lengthScale[kTrianglePairBatchSize];  // longest edge of the two triangles
   alignas(64) double pointOnFirst[3][kTrianglePairBatchSize];
   alignas(64) double pointOnSecond[3][kTrianglePairBatchSize];
+  // The last Newton iterate (u1, u2, v1, v2) before it is made admissible: the state a
+  // continuation (penaltyTriangleDistanceBatchContinued) starts from.
+  alignas(64) double iterate[4][kTrianglePairBatchSize];
 
   TriangleDistanceResult lane(int l) const {
     TriangleDistanceResult r;
@@ -56,6 +59,22 @@ struct PenaltyBatchResult {
 // iteration count outside [1, kMaxNewtonIterations].
 void penaltyTriangleDistanceBatch(const TrianglePairBatch& batch, const PenaltyOptions& options,
                                   PenaltyBatchResult& result);
+
+// The penalty weights of the `steps`-step schedule (steps values, relative to the mean squared
+// edge length), the ones penaltyTriangleDistanceBatch uses. Throws std::invalid_argument for
+// steps outside [1, kMaxNewtonIterations].
+const double* penaltyWeightSchedule(int steps);
+
+// The kernel from a given iterate: `steps` Newton steps with weights[0, steps) starting from
+// start[0..3][lane] = (u1, u2, v1, v2) (the centroids when start is null). Running a schedule
+// in two calls, the second from the first's result.iterate, gives bit for bit the result of one
+// call with the concatenated schedule (each lane's arithmetic does not depend on the others;
+// only lowerBound may come out tighter where another lane of the batch needed feature bounds).
+void penaltyTriangleDistanceBatchContinued(const TrianglePairBatch& batch, const double* weights,
+                                           int steps,
+                                           const double (*start)[kTrianglePairBatchSize],
+                                           const PenaltyOptions& options,
+                                           PenaltyBatchResult& result);
 
 // Penalty distances (no certification, no fallback) of first[k] and second[k], k < count; of
 // one triangle against each of second[0, count); and of every pair of two meshes (results in
