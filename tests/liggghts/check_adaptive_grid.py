@@ -23,12 +23,9 @@ Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.  Reuses compare_runs.
 dump parsers and comparisons.
 """
 
-import argparse
 import os
 import re
-import shutil
 import sys
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -207,44 +204,18 @@ def list_tests():
     return t
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("test", help="test name, or 'list'")
-    ap.add_argument("--exe", default=os.path.join(cr.ROOT, "build", "liggghts-spacetree"))
-    ap.add_argument("--mpiexec", default=shutil.which("mpirun") or shutil.which("mpiexec"))
-    ap.add_argument("--mpiexec-flags", default="")
-    ap.add_argument("--python", default=None)
-    ap.add_argument("--workdir", default=None)
-    ap.add_argument("--keep", action="store_true")
-    ap.add_argument("--timeout", type=float, default=300.0, help="per LIGGGHTS run (s)")
-    a = ap.parse_args()
-    if a.test == "list":
-        print("\n".join(list_tests()))
-        return 0
-    if a.workdir is None:
-        a.workdir = os.path.join(cr.ROOT, "build", "tests-liggghts", "grid_" + a.test.replace(":", "_"))
-    parts = a.test.split(":")
-    print("test %s (exe %s)" % (a.test, a.exe))
-    t0 = time.time()
-    try:
-        R = cr.Runner(a)
-        if parts[0] == "pairs" and len(parts) == 3 and parts[1] in cr.PAIR_CASES:
-            test_pairs(R, parts[1], int(parts[2]))
-        elif parts[0] == "moving" and len(parts) == 2:
-            test_moving(R, int(parts[1]))
-        elif parts == ["paper71"]:
-            test_paper71(R)
-        elif parts[0] == "bad" and len(parts) == 2 and parts[1] in BAD_INPUT:
-            test_bad(R, parts[1])
-        else:
-            print("unknown test '%s'; known:\n  %s" % (a.test, "\n  ".join(list_tests())))
-            return 2
-    except cr.Fail as e:
-        print("FAIL %s (%.1fs)\n%s" % (a.test, time.time() - t0, e))
-        return 1
-    print("ok %s (%.1fs)" % (a.test, time.time() - t0))
-    return 0
-
+def dispatch(R, parts):
+    if parts[0] == "pairs" and len(parts) == 3 and parts[1] in cr.PAIR_CASES:
+        test_pairs(R, parts[1], int(parts[2]))
+    elif parts[0] == "moving" and len(parts) == 2:
+        test_moving(R, int(parts[1]))
+    elif parts == ["paper71"]:
+        test_paper71(R)
+    elif parts[0] == "bad" and len(parts) == 2 and parts[1] in BAD_INPUT:
+        test_bad(R, parts[1])
+    else:
+        return False
+    return True
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cr.driver_main(__doc__, dispatch, list_tests, workdir_prefix="grid_"))

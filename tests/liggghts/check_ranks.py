@@ -18,12 +18,9 @@ Runs, parsing and the thermo comparison come from compare_runs.py.
 Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.
 """
 
-import argparse
 import os
 import re
-import shutil
 import sys
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -100,37 +97,14 @@ def test_restart(R, np, np_read):
     print("  PASS")
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("test")
-    ap.add_argument("--exe", default=os.path.join(C.ROOT, "build", "liggghts-spacetree"))
-    ap.add_argument("--mpiexec", default=shutil.which("mpirun") or shutil.which("mpiexec"))
-    ap.add_argument("--mpiexec-flags", default="")
-    ap.add_argument("--python", default=None)
-    ap.add_argument("--workdir", default=None)
-    ap.add_argument("--keep", action="store_true")
-    ap.add_argument("--timeout", type=float, default=300.0)
-    a = ap.parse_args()
-    if a.workdir is None:
-        a.workdir = os.path.join(C.ROOT, "build", "tests-liggghts", a.test.replace(":", "_"))
-    parts = a.test.split(":")
-    print("test %s (exe %s)" % (a.test, a.exe))
-    t0 = time.time()
-    try:
-        R = C.Runner(a)
-        if parts[0] == "ranks" and len(parts) == 3 and parts[1] in RANK_CASES:
-            test_ranks(R, parts[1], int(parts[2]))
-        elif parts[0] == "restart" and len(parts) in (2, 3):
-            test_restart(R, int(parts[1]), int(parts[-1]))
-        else:
-            print("unknown test '%s'" % a.test)
-            return 2
-    except C.Fail as e:
-        print("FAIL %s (%.1fs)\n%s" % (a.test, time.time() - t0, e))
-        return 1
-    print("ok %s (%.1fs)" % (a.test, time.time() - t0))
-    return 0
-
+def dispatch(R, parts):
+    if parts[0] == "ranks" and len(parts) == 3 and parts[1] in RANK_CASES:
+        test_ranks(R, parts[1], int(parts[2]))
+    elif parts[0] == "restart" and len(parts) in (2, 3):
+        test_restart(R, int(parts[1]), int(parts[-1]))
+    else:
+        return False
+    return True
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(C.driver_main(__doc__, dispatch))

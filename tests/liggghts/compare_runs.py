@@ -516,9 +516,13 @@ def list_tests():
     return t
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("test", help="test name, or 'list'")
+def driver_main(doc, dispatch, list_tests=None, workdir_prefix=""):
+    """The command line every regression driver shares (compare_runs.py, check_ranks.py,
+    check_adaptive_grid.py, check_restart_tree.py): `TEST [--exe ...]`; dispatch(R, parts) runs
+    the test named by the ':'-separated parts and returns False for an unknown name. Exit status
+    0 = pass, 1 = fail, 2 = unknown test."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("test", help="test name" + (", or 'list'" if list_tests else ""))
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "liggghts-spacetree"))
     ap.add_argument("--mpiexec", default=shutil.which("mpirun") or shutil.which("mpiexec"))
     ap.add_argument("--mpiexec-flags", default="",
@@ -528,28 +532,17 @@ def main():
     ap.add_argument("--keep", action="store_true", help="do not wipe the work directory first")
     ap.add_argument("--timeout", type=float, default=300.0, help="per LIGGGHTS run (s)")
     a = ap.parse_args()
-    if a.test == "list":
+    if list_tests and a.test == "list":
         print("\n".join(list_tests()))
         return 0
     if a.workdir is None:
-        a.workdir = os.path.join(ROOT, "build", "tests-liggghts", a.test.replace(":", "_"))
-    parts = a.test.split(":")
+        a.workdir = os.path.join(ROOT, "build", "tests-liggghts", workdir_prefix + a.test.replace(":", "_"))
     print("test %s (exe %s)" % (a.test, a.exe))
     t0 = time.time()
     try:
-        R = Runner(a)
-        if parts[0] == "pairs" and len(parts) == 3 and parts[1] in PAIR_CASES:
-            test_pairs(R, parts[1], int(parts[2]))
-        elif parts[0] == "thermo" and parts[1:2] == ["settle"] and len(parts) == 3:
-            test_settle(R, int(parts[2]))
-        elif parts[0] == "mesh" and len(parts) == 2:
-            test_mesh(R, int(parts[1]))
-        elif parts[0] == "overflow" and len(parts) == 2:
-            test_overflow(R, int(parts[1]))
-        elif parts[0] == "bad" and len(parts) == 2 and parts[1] in EXPECTED_ERRORS:
-            test_bad(R, parts[1])
-        else:
-            print("unknown test '%s'; known:\n  %s" % (a.test, "\n  ".join(list_tests())))
+        if not dispatch(Runner(a), a.test.split(":")):
+            known = ("; known:\n  " + "\n  ".join(list_tests())) if list_tests else ""
+            print("unknown test '%s'%s" % (a.test, known))
             return 2
     except Fail as e:
         print("FAIL %s (%.1fs)\n%s" % (a.test, time.time() - t0, e))
@@ -558,5 +551,21 @@ def main():
     return 0
 
 
+def dispatch(R, parts):
+    if parts[0] == "pairs" and len(parts) == 3 and parts[1] in PAIR_CASES:
+        test_pairs(R, parts[1], int(parts[2]))
+    elif parts[0] == "thermo" and parts[1:2] == ["settle"] and len(parts) == 3:
+        test_settle(R, int(parts[2]))
+    elif parts[0] == "mesh" and len(parts) == 2:
+        test_mesh(R, int(parts[1]))
+    elif parts[0] == "overflow" and len(parts) == 2:
+        test_overflow(R, int(parts[1]))
+    elif parts[0] == "bad" and len(parts) == 2 and parts[1] in EXPECTED_ERRORS:
+        test_bad(R, parts[1])
+    else:
+        return False
+    return True
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(driver_main(__doc__, dispatch, list_tests))
