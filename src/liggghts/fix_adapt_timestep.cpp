@@ -41,11 +41,23 @@ bool yes_no(Error *error, const char *keyword, const char *value)
   }
   return false;
 }
+
+// a value that must be > 0 (dtcontact, vimpact, tcontact, dtrest, penetration)
+double positive(Force *force, Error *error, const char *keyword, const char *value)
+{
+  const double x = force->numeric(FLERR,value);
+  if (!(x > 0.0)) {
+    char msg[256];
+    snprintf(msg,sizeof(msg),"Illegal fix adapt/timestep command: %s must be > 0",keyword);
+    error->all(FLERR,msg);
+  }
+  return x;
+}
 }
 
 FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), dtmin_set(false), dtmax_set(false), dtmax_captured(false), veto_on(true),
-  rollback_on(false), safety(0.8), eps(0.0), list(NULL), history(NULL), wall_values(0),
+  rollback_on(false), safety(0.8), eps(0.0), list(NULL), history(NULL),
   vetoed_steps(0), floored_steps(0), critical_last(0), rollbacks(0), rollbacks_failed(0),
   rollbacks_rebuilt(0),
   overlap_now(0), overlap_peak(0), contacts_now(0), contact_speed(0), warned_floor(false), warned_exhausted(false),
@@ -72,23 +84,15 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
       policy.dtMax = force->numeric(FLERR,arg[iarg+1]);
       dtmax_set = true;
     } else if (strcmp(arg[iarg],"dtcontact") == 0) {
-      policy.dtContact = force->numeric(FLERR,arg[iarg+1]);
+      policy.dtContact = positive(force,error,"dtcontact",arg[iarg+1]);
       dtcontact_set = true;
-      if (!(policy.dtContact > 0.0))
-        error->all(FLERR,"Illegal fix adapt/timestep command: dtcontact must be > 0");
     } else if (strcmp(arg[iarg],"vimpact") == 0) {
-      policy.impactSpeed = force->numeric(FLERR,arg[iarg+1]);
-      if (!(policy.impactSpeed > 0.0))
-        error->all(FLERR,"Illegal fix adapt/timestep command: vimpact must be > 0");
+      policy.impactSpeed = positive(force,error,"vimpact",arg[iarg+1]);
     } else if (strcmp(arg[iarg],"tcontact") == 0) {
-      policy.contactTime = force->numeric(FLERR,arg[iarg+1]);
-      if (!(policy.contactTime > 0.0))
-        error->all(FLERR,"Illegal fix adapt/timestep command: tcontact must be > 0");
+      policy.contactTime = positive(force,error,"tcontact",arg[iarg+1]);
     } else if (strcmp(arg[iarg],"dtrest") == 0) {
-      policy.dtRest = force->numeric(FLERR,arg[iarg+1]);
+      policy.dtRest = positive(force,error,"dtrest",arg[iarg+1]);
       dtrest_set = true;
-      if (!(policy.dtRest > 0.0))
-        error->all(FLERR,"Illegal fix adapt/timestep command: dtrest must be > 0");
     } else if (strcmp(arg[iarg],"eps") == 0) {
       eps = force->numeric(FLERR,arg[iarg+1]);
       if (!(eps >= 0.0)) error->all(FLERR,"Illegal fix adapt/timestep command: eps must be >= 0");
@@ -101,10 +105,8 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
     } else if (strcmp(arg[iarg],"rollback") == 0) {
       rollback_on = yes_no(error,"rollback",arg[iarg+1]);
     } else if (strcmp(arg[iarg],"penetration") == 0) {
-      rollback.fraction = force->numeric(FLERR,arg[iarg+1]);
+      rollback.fraction = positive(force,error,"penetration",arg[iarg+1]);
       penetration_set = true;
-      if (!(rollback.fraction > 0.0))
-        error->all(FLERR,"Illegal fix adapt/timestep command: penetration must be > 0");
     } else if (strcmp(arg[iarg],"retries") == 0) {
       rollback.maxRetries = force->inumeric(FLERR,arg[iarg+1]);
       if (rollback.maxRetries < 1)

@@ -84,7 +84,7 @@ class FixAdaptTimestep : public Fix {
   // tangential history of primitive walls (fix wall/gran ... primitive with a history model):
   // per-atom fix property/atom "history_<wall-ID>", saved and restored with the atoms
   std::vector<class FixPropertyAtom*> wall_histories;
-  int wall_values;              // sum of their values per atom
+  int wall_values = 0;          // sum of their values per atom
   std::vector<double> s_wall;
   void find_wall_histories();
   std::vector<int> h_flag;
