@@ -272,6 +272,12 @@ FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto 
   // max overlap, contacts, critical pairs, contact soon, largest contact speed (vimpact)
   double local[5] = {0.0,0.0,0.0,0.0,0.0};
   const bool speeds = policy.impactSpeed > 0.0;
+  double **x = atom->x;
+  double **v = atom->v;
+  double *radius = atom->radius;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double dt_test = policy.creep*update->dt;   // the step the veto tests
   if (speeds) {
     // accelerations f/m at the end of the step (f is complete for owned atoms only): sent to
     // ghosts. Atoms outside the group count as held (a fixed base sphere feels a force it never
@@ -285,12 +291,6 @@ FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto 
   }
   if (list) {
     neighbor->build_one(list->index);
-    double **x = atom->x;
-    double **v = atom->v;
-    double *radius = atom->radius;
-    int *mask = atom->mask;
-    const int nlocal = atom->nlocal;
-    const double dt_test = policy.creep*update->dt;
     for (int ii = 0; ii < list->inum; ii++) {
       const int i = list->ilist[ii];
       const int *jlist = list->firstneigh[i];
@@ -325,12 +325,6 @@ FixAdaptTimestep::PairScan FixAdaptTimestep::scan_pairs(spacetree::TimestepVeto 
   // walls: each local particle against the wall's closest point, treated as a sphere of radius 0
   // at rest; a moving wall only reports its overlaps (its speed is not known here)
   {
-    double **x = atom->x;
-    double **v = atom->v;
-    double *radius = atom->radius;
-    int *mask = atom->mask;
-    const int nlocal = atom->nlocal;
-    const double dt_test = policy.creep*update->dt;
     const double rest[3] = {0.0,0.0,0.0};
     // gap = distance from the particle surface to the wall (< 0: overlap), delta = centre to
     // the wall's closest point
