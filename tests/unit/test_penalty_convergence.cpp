@@ -17,6 +17,7 @@
 #include "geometry/PenaltyTriangleDistance.h"
 #include "geometry/SphereMesh.h"
 #include "geometry/TriangleDistance.h"
+#include "random_triangle_pairs.h"
 
 using namespace spacetree::geometry;
 using Eigen::Vector3d;
@@ -42,17 +43,6 @@ double unconvergedFraction(const std::vector<Triangle>& first, const std::vector
     off += !(std::abs(penalty[k].distance - d) <= 1e-10 * d + 1e-13 * h);
   }
   return double(off) / double(first.size());
-}
-
-void randomPairs(std::size_t count, std::vector<Triangle>& first, std::vector<Triangle>& second) {
-  std::mt19937_64 rng(77);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), shift(0.0, 3.0);
-  const auto point = [&] { return Vector3d(u(rng), u(rng), u(rng)); };
-  for (std::size_t k = 0; k < count; ++k) {
-    first.push_back({point(), point(), point()});
-    const Vector3d s = point() * shift(rng);
-    second.push_back({point() + s, point() + s, point() + s});
-  }
 }
 
 // All triangle pairs of two 12-triangle spheres of radius 1, randomly turned, 0.01 apart.
@@ -94,7 +84,7 @@ void spherePairs(std::vector<Triangle>& first, std::vector<Triangle>& second) {
 
 TEST(PenaltyConvergence, RandomPairsConvergeWithEightSteps) {
   std::vector<Triangle> first, second;
-  randomPairs(20000, first, second);
+  randomTrianglePairs(20000, 77, first, second);
   const double off8 = unconvergedFraction(first, second, 8);
   const double off4 = unconvergedFraction(first, second, 4);
   std::printf("[ report   ] penalty unconverged on random pairs: 8 steps %.2f %%, 4 steps %.2f %%\n",

@@ -19,6 +19,7 @@
 #include "geometry/PenaltyTriangleDistance.h"
 #include "geometry/SphereMesh.h"
 #include "geometry/TriangleDistance.h"
+#include "random_triangle_pairs.h"
 
 using namespace spacetree::geometry;
 using Eigen::Vector3d;
@@ -26,18 +27,6 @@ using Eigen::Vector3d;
 namespace {
 
 constexpr int kLanes = kTrianglePairBatchSize;
-
-void randomPairs(std::size_t count, unsigned seed, std::vector<Triangle>& first,
-                 std::vector<Triangle>& second) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), shift(0.0, 3.0);
-  const auto point = [&] { return Vector3d(u(rng), u(rng), u(rng)); };
-  for (std::size_t k = 0; k < count; ++k) {
-    first.push_back({point(), point(), point()});
-    const Vector3d s = point() * shift(rng);
-    second.push_back({point() + s, point() + s, point() + s});
-  }
-}
 
 // Two 40-triangle spheres of radius 1, randomly turned, about 0.01 apart (all pairs): the
 // benchmark's kind of scene, where a quarter of the pairs needs more than four steps.
@@ -125,7 +114,7 @@ void expectSame(const TriangleDistanceResult& a, const TriangleDistanceResult& b
 
 TEST(PenaltyContinuation, TwoCallsEqualOneRunOfTheConcatenatedSchedule) {
   std::vector<Triangle> first, second;
-  randomPairs(4096, 5, first, second);
+  randomTrianglePairs(4096, 5, first, second);
   PenaltyOptions p;
   const double* four = penaltyWeightSchedule(4);
   const double* eight = penaltyWeightSchedule(8);
@@ -162,7 +151,7 @@ TEST(TwoStageHybrid, EveryResultIsTheStageOneTheStageTwoOrTheExactOne) {
   o.newtonIterations = 4;
   o.continuationIterations = 4;
   std::vector<Triangle> first, second;
-  randomPairs(20000, 9, first, second);
+  randomTrianglePairs(20000, 9, first, second);
   std::vector<Triangle> a, b;
   spheres(3, a, b);
   for (const Triangle& s : a)
