@@ -6,9 +6,16 @@ exact, penalty and hybrid methods. Right: the hybrid's speed-up over the exact m
 fraction of pairs it hands to the exact method.
 
 Usage: /usr/bin/python3 bench/plot_triangle_distance.py [CSV] [PNG] [PIPELINE_CSV]
+       /usr/bin/python3 bench/plot_triangle_distance.py --median OUT.csv RUN1.csv RUN2.csv ...
 
 If bench/results/mesh_contact.csv (the contact-pipeline part of the benchmark) exists, it is
-plotted too, into mesh_contact.png next to it: microseconds per particle pair per method.
+plotted too, into mesh_contact.png next to it: microseconds per particle pair per method; so is
+triangle_distance_replay.csv (--replay-out: the same scenes repeated in a row vs interleaved),
+into triangle_distance_replay.png.
+
+--median merges runs of the benchmark (any of its three CSVs) row by row: the median of the
+timings and of the per-run speed-ups (side-by-side ratios within a run), "yes" in
+decisions_equal_exact only if every run says yes, and a column "runs".
 """
 import os
 import csv
@@ -21,7 +28,51 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+# Columns that vary between runs (timings and the ratios computed from them).
+TIMED = ("ns_per_pair", "pairs_per_second", "speedup_vs_exact", "us_per_particle_pair",
+         "time_over_repeated")
+
+
+def median(values):
+    values = sorted(values)
+    n = len(values)
+    return values[n // 2] if n % 2 else 0.5 * (values[n // 2 - 1] + values[n // 2])
+
+
+def merge_runs(out, sources):
+    runs = []
+    for source in sources:
+        with open(source, newline="") as f:
+            reader = csv.DictReader(f)
+            fields = reader.fieldnames
+            runs.append(list(reader))
+    if any(len(r) != len(runs[0]) for r in runs):
+        sys.exit("runs have different row counts")
+    merged = []
+    for rows in zip(*runs):
+        row = dict(rows[0])
+        for name in fields:
+            if name in TIMED:
+                row[name] = f"{median([float(r[name]) for r in rows]):.6g}"
+            elif name == "decisions_equal_exact":
+                row[name] = "yes" if all(r[name] == "yes" for r in rows) else "no"
+            elif any(r[name] != row[name] for r in rows):
+                sys.exit(f"column {name} differs between runs: {[r[name] for r in rows]}")
+        if "pairs_per_second" in row:  # consistent with the median time
+            row["pairs_per_second"] = f"{1e9 / float(row['ns_per_pair']):.6g}"
+        row["runs"] = str(len(rows))
+        merged.append(row)
+    with open(out, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=[n for n in fields if n != "runs"] + ["runs"])
+        writer.writeheader()
+        writer.writerows(merged)
+    print(f"wrote {out} (median of {len(runs)} runs)")
+
+
 def main():
+    if len(sys.argv) > 2 and sys.argv[1] == "--median":
+        merge_runs(sys.argv[2], sys.argv[3:])
+        return
     source = sys.argv[1] if len(sys.argv) > 1 else "bench/results/triangle_distance.csv"
     target = sys.argv[2] if len(sys.argv) > 2 else source.rsplit(".", 1)[0] + ".png"
     series = defaultdict(list)  # (method, iterations) -> rows
@@ -66,7 +117,8 @@ def main():
     speed.set_yscale("log")
     speed.set_xlabel("triangles per particle")
     speed.set_ylabel("triangle-pair checks per second (one core)")
-    speed.set_title("Two spheres at contact distance, all triangle pairs (median of 5 rounds)")
+    speed.set_title("Two spheres at contact distance, all triangle pairs\n"
+                    "(>= 16384 distinct pairs per pass, median of 5 rounds)", fontsize=10)
     speed.grid(True, which="both", alpha=0.3)
     speed.legend(fontsize=8)
 
@@ -89,6 +141,45 @@ def main():
     pipeline = sys.argv[3] if len(sys.argv) > 3 else os.path.join(os.path.dirname(source), "mesh_contact.csv")
     if os.path.exists(pipeline):
         plot_pipeline(pipeline, styles)
+    replay = os.path.join(os.path.dirname(source), "triangle_distance_replay.csv")
+    if os.path.exists(replay):
+        plot_replay(replay, styles)
+
+
+def plot_replay(source, styles):
+    """ns per pair versus the distinct pairs one pass replays: "repeated" (one scene in a row)
+    is the leftmost point of each line, then 4, 16, ... scenes interleaved."""
+    series = defaultdict(list)
+    with open(source, newline="") as f:
+        for row in csv.DictReader(f):
+            series[(int(row["triangles_per_particle"]), row["method"], int(row["newton_iterations"]))].append(row)
+    counts = sorted({k[0] for k in series})
+    fig, axes = plt.subplots(1, len(counts), figsize=(4.5 * len(counts), 4.5), squeeze=False)
+    for ax, count in zip(axes[0], counts):
+        for (tri, method, iterations), rows in sorted(series.items()):
+            if tri != count:
+                continue
+            rows.sort(key=lambda r: int(r["distinct_pairs_per_pass"]))
+            color, marker = styles.get(method, ("gray", "x"))
+            label = method if method == "exact" else (
+                f"two-stage hybrid, {iterations}+{method[len('hybrid2+'):]} steps"
+                if method.startswith("hybrid2+") else f"{method}, {iterations} steps")
+            ax.plot([int(r["distinct_pairs_per_pass"]) for r in rows],
+                    [float(r["ns_per_pair"]) for r in rows], "-", color=color, marker=marker,
+                    label=label)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("distinct triangle pairs per pass")
+        ax.set_ylabel("ns per triangle pair (one core)")
+        ax.set_title(f"{count} triangles per particle")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Same scenes: leftmost point one scene repeated in a row, then 4, 16, ... "
+                 "scenes interleaved", fontsize=10)
+    fig.tight_layout()
+    target = source.rsplit(".", 1)[0] + ".png"
+    fig.savefig(target, dpi=120)
+    print(f"wrote {target}")
 
 
 def plot_pipeline(source, styles):
