@@ -338,6 +338,15 @@ BAD = {
     "method": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
                "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method fast",
                r"ERROR.*method 'fast'"),
+    "continuation": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                     "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method hybrid continuation -1",
+                     r"ERROR.*continuation '-1' must be an integer in \[0, 32\]"),
+    "newton_steps": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                     "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 continuation 4 iterations 29",
+                     r"ERROR.*iterations 29 \+ continuation 4 must be <= 32"),
+    "continuation_method": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                            "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method penalty continuation 4",
+                            r"ERROR.*continuation needs method hybrid"),
     "open_mesh": ("fix shapes all trimesh/template type 1 file open.stl",
                   r"ERROR.*open\.stl.*open surface"),
     "atom_style": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7",
