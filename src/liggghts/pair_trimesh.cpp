@@ -102,11 +102,6 @@ void PairTrimesh::allocate()
 
 void PairTrimesh::settings(int narg, char **arg)
 {
-  // a repeated pair_style line starts from the defaults, not from the previous line's values
-  model->contact = ct::MeshContactOptions();
-  model->friction = model->sliding_damping = 0.0;
-  model->rotation = true;
-  model->threads = 0;
   bool have_eps = false, have_s = false, have_d = false;
   bool have_continuation = false;
   // a Newton step count: an integer >= lo (the sum with the other stage is checked below)
