@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -22,6 +23,7 @@
 #include "fix_trimesh_state.h"
 #include "fix_trimesh_template.h"
 #include "force.h"
+#include "geometry/PenaltyTriangleDistance.h"
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
@@ -50,6 +52,9 @@ dy::RigidBody body(const TrimeshTypeTemplate &tt, const ct::Pose &pose, const do
   }
   return b;
 }
+
+// Upper limit of penalty Newton steps (stage 1 + stage 2): the core's kMaxNewtonIterations.
+const int kMaxNewtonSteps = spacetree::geometry::kMaxNewtonIterations;
 
 }
 
@@ -98,6 +103,19 @@ void PairTrimesh::allocate()
 void PairTrimesh::settings(int narg, char **arg)
 {
   bool have_eps = false, have_s = false, have_d = false;
+  bool have_continuation = false;
+  // a Newton step count: an integer >= lo (the sum with the other stage is checked below)
+  const auto newton_steps = [&](const char *kw, const char *val, long lo) {
+    char *end = NULL;
+    const long n = strtol(val,&end,10);
+    if (end == val || *end != '\0' || n < lo || n > kMaxNewtonSteps) {
+      char msg[200];
+      snprintf(msg,sizeof(msg),"Illegal pair_style trimesh command: %s '%s' must be an integer in "
+               "[%ld, %d]",kw,val,lo,kMaxNewtonSteps);
+      error->all(FLERR,msg);
+    }
+    return int(n);
+  };
   int iarg = 0;
   while (iarg < narg) {
     const char *kw = arg[iarg];
@@ -122,9 +140,10 @@ void PairTrimesh::settings(int narg, char **arg)
         error->all(FLERR,msg.c_str());
       }
     } else if (strcmp(kw,"iterations") == 0) {
-      model->contact.newtonIterations = force->inumeric(FLERR,val);
-      if (model->contact.newtonIterations < 1)
-        error->all(FLERR,"Illegal pair_style trimesh command: iterations must be >= 1");
+      model->contact.newtonIterations = newton_steps(kw,val,1);
+    } else if (strcmp(kw,"continuation") == 0) {
+      model->contact.continuationIterations = newton_steps(kw,val,0);
+      have_continuation = true;
     } else if (strcmp(kw,"rotation") == 0) {
       if (strcmp(val,"yes") == 0) model->rotation = true;
       else if (strcmp(val,"no") == 0) model->rotation = false;
@@ -151,6 +170,18 @@ void PairTrimesh::settings(int narg, char **arg)
   if (!(model->damping >= 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: damping must be >= 0");
   if (!(model->friction >= 0.0) || !(model->sliding_damping >= 0.0))
     error->all(FLERR,"Illegal pair_style trimesh command: friction MU GAMMA must be >= 0");
+  // Newton steps, defaults resolved by the core (penalty 8; hybrid 5 + 4, the two-stage hybrid)
+  const ct::TriangleDistanceMethod method = model->contact.method;
+  if (have_continuation && method != ct::TriangleDistanceMethod::Hybrid)
+    error->all(FLERR,"Illegal pair_style trimesh command: continuation needs method hybrid");
+  const int stage1 = ct::newtonIterationsOf(model->contact);
+  const int stage2 = ct::continuationIterationsOf(model->contact);
+  if (stage1 + stage2 > kMaxNewtonSteps) {
+    char msg[200];
+    snprintf(msg,sizeof(msg),"Illegal pair_style trimesh command: iterations %d + continuation %d "
+             "must be <= %d Newton steps",stage1,stage2,kMaxNewtonSteps);
+    error->all(FLERR,msg);
+  }
   model->normal.reset(new dy::NormalSpringDashpot(model->stiffness,model->damping));
   model->tangential.reset();
   if (model->friction > 0.0 && model->sliding_damping > 0.0)
@@ -168,6 +199,12 @@ void PairTrimesh::settings(int narg, char **arg)
   }
   model->search.reset(new TrimeshParallelContacts(model->contact,threads));
   if (comm->me == 0 && screen) {
+    if (method == ct::TriangleDistanceMethod::Hybrid)
+      fprintf(screen,"pair_style trimesh: method hybrid, %d Newton steps%s%s\n",stage1,
+              stage2 > 0 ? " + " : " (single stage)",
+              stage2 > 0 ? (std::to_string(stage2) + " for the pairs stage 1 leaves uncertified").c_str() : "");
+    else if (method == ct::TriangleDistanceMethod::Penalty)
+      fprintf(screen,"pair_style trimesh: method penalty, %d Newton steps\n",stage1);
     if (model->threads == 0)
       fprintf(screen,"pair_style trimesh: triangle checks on %d thread(s) per rank (threads 0: TBB "
               "default %d shared by %d rank(s) on this node)\n",model->search->threads(),tbb_default,on_node);

@@ -2,7 +2,8 @@
    src/core/contact/MeshContact, src/core/dynamics/ContactForce).
 
      pair_style trimesh eps E stiffness S damping D [method exact|penalty|hybrid]
-                        [friction MU] [rotation yes|no] [threads N]
+                        [iterations K] [continuation C] [friction MU GAMMA] [rotation yes|no]
+                        [threads N]
      pair_coeff * *
 
    Candidate pairs come from a granular half list (newton off; `neighbor ... bin` or
@@ -13,7 +14,9 @@
    and angular velocities only with `rotation yes` (default). Obstacles (fixed template
    types) have infinite mass. Statistics: compute trimesh/contacts. `threads N`: the triangle
    checks of a step as TBB tasks on N threads (0 = TBB default, 1 = serial; same trajectory bit
-   for bit, trimesh_parallel_contacts.h). */
+   for bit, trimesh_parallel_contacts.h). Newton steps of the penalty kernel: `iterations K`
+   (penalty: default 8; hybrid stage 1: default 5), `continuation C` (hybrid only: C more steps
+   for the pairs stage 1 leaves uncertified, default 4, 0 = single stage; K + C <= 32). */
 
 #ifdef PAIR_CLASS
 

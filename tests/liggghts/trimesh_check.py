@@ -14,7 +14,8 @@ Cases (each prints PASS/FAIL lines; exit status 0 = all passed):
   insert    grains from fix insert/pack get their templates (1 and 2 ranks) and land on a floor
   ranks     six spinning particles crossing the rank boundary: 1 and 2 ranks give the same surfaces
   restart   write_restart / read_restart half way = one uninterrupted run
-  bad       bad input stops with a clear ERROR
+  bad       bad input stops with a clear ERROR; the printed Newton-step schedule (defaults,
+            iterations/continuation, a repeated pair_style line starts from the defaults)
   hopper    short version of inputs/hopper: no particle lost, no penetration beyond eps
 """
 import argparse
@@ -338,6 +339,15 @@ BAD = {
     "method": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
                "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method fast",
                r"ERROR.*method 'fast'"),
+    "continuation": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                     "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method hybrid continuation -1",
+                     r"ERROR.*continuation '-1' must be an integer in \[0, 32\]"),
+    "newton_steps": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                     "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 continuation 4 iterations 29",
+                     r"ERROR.*iterations 29 \+ continuation 4 must be <= 32"),
+    "continuation_method": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                            "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method penalty continuation 4",
+                            r"ERROR.*continuation needs method hybrid"),
     "open_mesh": ("fix shapes all trimesh/template type 1 file open.stl",
                   r"ERROR.*open\.stl.*open surface"),
     "atom_style": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7",
@@ -360,6 +370,23 @@ def case_bad(a):
                            timeout=60)
         m = re.search(rx, p.stdout)
         check(p.returncode != 0 and m, "bad %s: %s" % (name, m.group(0) if m else p.stdout[-300:]))
+    # the Newton-step schedule as printed: defaults (two-stage hybrid 5 + 4), the keywords, and a
+    # repeated pair_style line back at the defaults (LIGGGHTS 3.8 creates a new pair style)
+    deck = os.path.join(wd, "in.schedule")
+    with open(deck, "w") as f:
+        f.write("atom_style granular\nboundary f f f\nnewton off\ncommunicate single vel yes\nunits si\n"
+                "region box block 0 1 0 1 0 1\ncreate_box 1 box\n"
+                "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10\n"
+                "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 iterations 8 continuation 0\n"
+                "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method hybrid\n"
+                "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method penalty\n")
+    p = subprocess.run([a.exe, "-in", deck, "-echo", "none", "-log", "none"], cwd=wd, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True, errors="replace", timeout=60)
+    got = re.findall(r"pair_style trimesh: method (\w+), (\d+) Newton steps( \+ \d+| \(single stage\))?", p.stdout)
+    want = [("hybrid", "5", " + 4"), ("hybrid", "8", " (single stage)"), ("hybrid", "5", " + 4"), ("penalty", "8", "")]
+    check(p.returncode == 0 and got == want,
+          "schedule: default hybrid 5 + 4, iterations 8 continuation 0 single stage, repeated line back at "
+          "the default, penalty 8 (%s)" % got)
 
 
 def case_hopper(a):

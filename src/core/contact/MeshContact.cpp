@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "geometry/PenaltyTriangleDistance.h"
 
@@ -35,6 +36,7 @@ MeshContactStatistics& MeshContactStatistics::operator+=(const MeshContactStatis
   trianglePairsPruned += o.trianglePairsPruned;
   trianglePairsChecked += o.trianglePairsChecked;
   fallbacks += o.fallbacks;
+  continued += o.continued;
   rawContacts += o.rawContacts;
   nonMinimumContacts += o.nonMinimumContacts;
   contacts += o.contacts;
@@ -48,7 +50,35 @@ bool boundingSpheresWithinContactDistance(const geometry::RigidShape& first, con
   return (secondPose.position - firstPose.position).squaredNorm() < reach * reach;
 }
 
-MeshContactFinder::MeshContactFinder(MeshContactOptions options) : options_(std::move(options)) {}
+int newtonIterationsOf(const MeshContactOptions& options) {
+  if (options.newtonIterations > 0) return options.newtonIterations;
+  switch (options.method) {
+    case TriangleDistanceMethod::Exact: return 0;
+    case TriangleDistanceMethod::Penalty: return geometry::PenaltyOptions{}.newtonIterations;
+    case TriangleDistanceMethod::Hybrid: return geometry::HybridOptions{}.newtonIterations;
+  }
+  return 0;
+}
+
+int continuationIterationsOf(const MeshContactOptions& options) {
+  return options.method == TriangleDistanceMethod::Hybrid ? options.continuationIterations : 0;
+}
+
+void validateMeshContactOptions(const MeshContactOptions& options) {
+  if (options.newtonIterations < 0)
+    throw std::invalid_argument("MeshContactOptions: newtonIterations must be >= 0 (0 = default)");
+  if (options.continuationIterations < 0)
+    throw std::invalid_argument("MeshContactOptions: continuationIterations must be >= 0");
+  if (newtonIterationsOf(options) + continuationIterationsOf(options) >
+      geometry::kMaxNewtonIterations)
+    throw std::invalid_argument(
+        "MeshContactOptions: newtonIterations + continuationIterations (hybrid) must be <= " +
+        std::to_string(geometry::kMaxNewtonIterations));
+}
+
+MeshContactFinder::MeshContactFinder(MeshContactOptions options) : options_(std::move(options)) {
+  validateMeshContactOptions(options_);
+}
 
 namespace {
 
@@ -236,7 +266,7 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
       break;
     case TriangleDistanceMethod::Penalty: {
       geometry::PenaltyOptions penalty;
-      penalty.newtonIterations = options_.newtonIterations;
+      penalty.newtonIterations = newtonIterationsOf(options_);
       geometry::penaltyTriangleDistances(pairFirst_.data(), pairSecond_.data(), pairs, penalty,
                                          results_.data());
       break;
@@ -244,12 +274,13 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
     case TriangleDistanceMethod::Hybrid: {
       geometry::HybridOptions hybrid;
       hybrid.contactDistance = contactDistance;
-      hybrid.newtonIterations = options_.newtonIterations;
-      hybrid.continuationIterations = 0;  // single stage of K steps, as `iterations K` says
+      hybrid.newtonIterations = newtonIterationsOf(options_);
+      hybrid.continuationIterations = continuationIterationsOf(options_);
       geometry::HybridStatistics hybridCounts;
       geometry::hybridTriangleDistances(pairFirst_.data(), pairSecond_.data(), pairs, hybrid,
                                         results_.data(), &hybridCounts);
       counts.fallbacks = hybridCounts.fallbacks();
+      counts.continued = hybridCounts.continued;
       break;
     }
   }

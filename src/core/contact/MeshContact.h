@@ -31,7 +31,8 @@
 // bit); (4) the
 // surviving triangle pairs go to the chosen distance method in one batch (Exact:
 // triangleDistance; Penalty: the batched penalty-Newton kernel, uncertified; Hybrid: penalty
-// with certified fallback, contact decisions identical to Exact's); (5) contacts (d < 2 eps);
+// with certified fallback, contact decisions identical to Exact's; by default two-stage:
+// uncertified pairs continue continuationIterations more Newton steps before the fallback); (5) contacts (d < 2 eps);
 // (5b) local-minimum filter: a triangle-pair contact whose closest point lies on an edge or a
 // vertex of its triangle is dropped when a neighbouring triangle across that edge (around that
 // vertex) descends towards the other body (u . (w - p) > kFeatureTolerance |w - p|, u the unit
@@ -91,7 +92,13 @@ constexpr std::size_t kTriangleIndexMinimum = 64;
 struct MeshContactOptions {
   double epsilon = 0.0;  // halo depth; contact when the triangle distance < 2 epsilon
   TriangleDistanceMethod method = TriangleDistanceMethod::Hybrid;
-  int newtonIterations = 8;        // penalty and hybrid (4 or 8 in the paper)
+  // Penalty Newton steps: of the penalty method and of the hybrid's stage 1 (4 or 8 in the
+  // paper). 0: the method's own default (PenaltyOptions: 8; HybridOptions: 5).
+  int newtonIterations = 0;
+  // Hybrid only: further Newton steps for the pairs stage 1 leaves uncertified (the two-stage
+  // hybrid, HybridOptions::continuationIterations; same decisions as exact either way). 0: single
+  // stage. Default: the core's (4). Stage 1 + stage 2 <= kMaxNewtonIterations (32).
+  int continuationIterations = geometry::HybridOptions{}.continuationIterations;
   bool deduplicate = true;
   bool localMinimaOnly = true;     // drop contacts that are not local distance minima (5b)
   double mergeNormalCosine = 0.9;  // "reasonably close normals": within about 25 degrees
@@ -125,6 +132,7 @@ struct MeshContactStatistics {
   std::size_t trianglePairsPruned = 0;   // rejected by triangle bounding spheres
   std::size_t trianglePairsChecked = 0;  // given to the distance method
   std::size_t fallbacks = 0;             // hybrid: pairs that fell back to the exact method
+  std::size_t continued = 0;             // two-stage hybrid: pairs that ran stage 2
   std::size_t nonMinimumContacts = 0;    // dropped by the local-minimum filter (5b)
   std::size_t rawContacts = 0;           // contacts before de-duplication
   std::size_t contacts = 0;              // after de-duplication
@@ -132,9 +140,20 @@ struct MeshContactStatistics {
   MeshContactStatistics& operator+=(const MeshContactStatistics& o);
 };
 
+// The Newton steps the options ask for, defaults resolved: of the penalty method or the hybrid's
+// stage 1 (0 for exact), and of the hybrid's stage 2 (0 unless hybrid).
+int newtonIterationsOf(const MeshContactOptions& options);
+int continuationIterationsOf(const MeshContactOptions& options);
+
+// Throws std::invalid_argument naming the field for newtonIterations or continuationIterations
+// < 0, or more than kMaxNewtonIterations penalty steps (stage 1 + stage 2 for the hybrid).
+// epsilon is checked by find() (a default-constructed finder may get it later).
+void validateMeshContactOptions(const MeshContactOptions& options);
+
 // Reusable contact search (owns scratch buffers: one per thread).
 class MeshContactFinder {
  public:
+  // Throws as validateMeshContactOptions.
   explicit MeshContactFinder(MeshContactOptions options);
   const MeshContactOptions& options() const { return options_; }
 

@@ -12,6 +12,7 @@ MeshContactPairCheck::MeshContactPairCheck(const std::vector<const geometry::Rig
     throw std::invalid_argument("MeshContactPairCheck: epsilon must be > 0");
   if (shapes.size() != poses.size())
     throw std::invalid_argument("MeshContactPairCheck: one shape and one pose per particle");
+  contact::validateMeshContactOptions(options);  // here, not in the first task's finder
 }
 
 void MeshContactPairCheck::check(int first, int second, std::size_t firstBegin,

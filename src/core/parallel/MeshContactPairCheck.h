@@ -18,7 +18,8 @@ namespace spacetree::parallel {
 class MeshContactPairCheck : public PairCheck {
  public:
   // shapes[p] and poses[p] of every particle p; the vectors (and shapes) must outlive the check.
-  // Throws std::invalid_argument for options.epsilon <= 0 or vectors of different sizes.
+  // Throws std::invalid_argument for options.epsilon <= 0, vectors of different sizes or Newton
+  // step counts that validateMeshContactOptions rejects.
   MeshContactPairCheck(const std::vector<const geometry::RigidShape*>& shapes,
                        const std::vector<contact::Pose>& poses,
                        const contact::MeshContactOptions& options);
