@@ -326,6 +326,7 @@ void runPipeline(const Settings& settings) {
       o.epsilon = eps;
       o.method = r.method;
       o.newtonIterations = r.iterations ? r.iterations : 8;
+      o.continuationIterations = 0;  // the pipeline rows are the single-stage hybrid (docs)
       finders.emplace_back(o);
     }
     std::vector<MeshContactStatistics> stats(runs.size());

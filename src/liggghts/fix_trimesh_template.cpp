@@ -95,7 +95,7 @@ FixTrimeshTemplate::FixTrimeshTemplate(LAMMPS *lmp, int narg, char **arg) :
     if (!(src.density > 0.0)) error->all(FLERR,"Illegal fix trimesh/template command: density must be > 0");
     if (!(src.scale > 0.0)) error->all(FLERR,"Illegal fix trimesh/template command: scale must be > 0");
     if (src.kind == TrimeshTypeSource::Dented) {
-      if (src.ntri < 8) error->all(FLERR,"Illegal fix trimesh/template command: dented needs ntri >= 8");
+      if (src.ntri < 12) error->all(FLERR,"Illegal fix trimesh/template command: dented needs ntri >= 12");
       if (!(src.radius > 0.0)) error->all(FLERR,"Illegal fix trimesh/template command: dented needs radius > 0");
       if (!(src.amplitude >= 0.0 && src.amplitude < 1.0))
         error->all(FLERR,"Illegal fix trimesh/template command: dented amplitude must be in [0,1)");

@@ -348,6 +348,8 @@ BAD = {
     "continuation_method": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
                             "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10 method penalty continuation 4",
                             r"ERROR.*continuation needs method hybrid"),
+    "dented_ntri": ("fix shapes all trimesh/template type 1 dented ntri 10 radius 0.002 amplitude 0.2 seed 7",
+                    r"ERROR.*dented needs ntri >= 12"),
     "open_mesh": ("fix shapes all trimesh/template type 1 file open.stl",
                   r"ERROR.*open\.stl.*open surface"),
     "atom_style": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7",
