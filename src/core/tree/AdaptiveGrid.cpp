@@ -120,15 +120,17 @@ void AdaptiveGrid::rehostAll(const double (*x)[3], int n) {
 
 bool AdaptiveGrid::needsNewGeometry(const double (*x)[3], const double* radius, int n) const {
   if (!haveGeometry_) return true;
-  double minNeed = std::numeric_limits<double>::infinity();
+  // requiredMeshSize() grows with the radius: the extreme radii decide.
+  double minRadius = std::numeric_limits<double>::infinity(), maxRadius = -minRadius;
   for (int i = 0; i < n; ++i) {
     for (int d = 0; d < 3; ++d)
       if (!(x[i][d] >= geometry_.origin[d] && x[i][d] <= geometry_.origin[d] + geometry_.rootSize))
         return true;
-    const double need = pairSearch_.requiredMeshSize(radius[i]);
-    if (need > geometry_.rootSize) return true;
-    minNeed = std::min(minNeed, need);
+    minRadius = std::min(minRadius, radius[i]);
+    maxRadius = std::max(maxRadius, radius[i]);
   }
+  if (n > 0 && pairSearch_.requiredMeshSize(maxRadius) > geometry_.rootSize) return true;
+  const double minNeed = n > 0 ? pairSearch_.requiredMeshSize(minRadius) : std::numeric_limits<double>::infinity();
   // A smaller particle than the finest level was made for: go deeper.
   return geometry_.depth < options_.maxLevel && minNeed > 0.0 && meshSize(geometry_.depth) / 3.0 >= minNeed;
 }
@@ -486,7 +488,7 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
     if (options_.type == GridType::Reluctant) rehostAll(x, n);
   }
   if (options_.type == GridType::Adaptive && options_.incremental) resetIncrementalState(x, n);
-  if (options_.type == GridType::Reluctant && options_.incremental) resetReluctantState(x, n);
+  if (options_.type == GridType::Reluctant && options_.incremental) resetReluctantState(x, radius, n);
   collectStatistics();
 }
 

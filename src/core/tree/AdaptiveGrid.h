@@ -153,12 +153,14 @@ class AdaptiveGrid {
   // Incremental reluctant update (options_.incremental), AdaptiveGridReluctant.cpp.
   bool reluctantTracking() const { return options_.type == GridType::Reluctant && incrementalValid_; }
   bool updateReluctantIncrementally(const double (*x)[3], const double (*v)[3], const double* radius, int n);
-  void resetReluctantState(const double (*x)[3], int n);
+  void resetReluctantState(const double (*x)[3], const double* radius, int n);
   double hostMargin(const double p[3], int admissible, int host, int descent) const;
   void rehostParticle(const double (*x)[3], int i);
   void linkHost(int i);
   void unlinkHost(int i);
   void addHeatInput(int level, std::uint64_t vertexKey, std::int64_t delta);
+  void markDirty(int level, std::size_t inputSlot);
+  void markDirtyVertex(int level, std::uint64_t vertexKey);
   void setHeat(int level, std::uint64_t vertexKey, std::int64_t value);
   void addShock(int level, std::uint64_t vertexKey);
   void annealDirtyMarkers();
@@ -214,11 +216,13 @@ class AdaptiveGrid {
   // may change at the next annealing.
   std::vector<std::array<double, 3>> referencePosition_;
   std::vector<double> margin_;
+  std::vector<double> hostRadius_;  // radius of the last admissible level derivation
   std::vector<int> fragile_;  // margin <= 0: re-derived at every grid change
   std::vector<int> nextAtVertex_, previousAtVertex_;
   std::vector<Markers> firstAtVertex_;  // per level: host vertex -> first particle + 1 (0: none)
   std::vector<Markers> heatInput_;
-  std::vector<KeySet> dirty_, annealing_;
+  std::vector<std::vector<std::uint32_t>> dirty_, annealing_;  // per level: slots in heatInput_
+  std::vector<std::vector<char>> dirtyFlag_;                    // per level and slot: in dirty_
   std::vector<std::pair<int, std::uint64_t>> removedCells_;  // (level, cell) coarsened
   std::vector<int> rehostQueue_;
   std::vector<char> queued_;

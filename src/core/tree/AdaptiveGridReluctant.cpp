@@ -70,9 +70,26 @@ void AdaptiveGrid::unlinkHost(int i) {
   if (after >= 0) previousAtVertex_[after] = before;
 }
 
+void AdaptiveGrid::markDirty(int level, std::size_t slot) {
+  // Dirty vertices by their slot in heatInput_ (stable: entries are never erased), flagged
+  // there: one hash look-up per marked vertex instead of two.
+  std::vector<char>& flags = dirtyFlag_[level];
+  if (flags.size() < heatInput_[level].size()) flags.resize(heatInput_[level].size(), 0);
+  if (flags[slot]) return;
+  flags[slot] = 1;
+  dirty_[level].push_back(std::uint32_t(slot));
+}
+
+void AdaptiveGrid::markDirtyVertex(int level, std::uint64_t vertexKey) {
+  Markers& inputs = heatInput_[level];
+  markDirty(level, std::size_t(&inputs[vertexKey] - inputs.values.data()));
+}
+
 void AdaptiveGrid::addHeatInput(int level, std::uint64_t vertexKey, std::int64_t delta) {
-  heatInput_[level][vertexKey] += delta;
-  dirty_[level].insert(vertexKey);
+  Markers& inputs = heatInput_[level];
+  std::int64_t& input = inputs[vertexKey];
+  input += delta;
+  markDirty(level, std::size_t(&input - inputs.values.data()));
 }
 
 void AdaptiveGrid::setHeat(int level, std::uint64_t vertexKey, std::int64_t value) {
@@ -92,7 +109,7 @@ void AdaptiveGrid::setHeat(int level, std::uint64_t vertexKey, std::int64_t valu
 
 void AdaptiveGrid::addShock(int level, std::uint64_t vertexKey) {
   setHeat(level, vertexKey, std::min(kMaxHeat, heat_[level].get(vertexKey) + options_.shock));
-  dirty_[level].insert(vertexKey);  // halved at the next annealing
+  markDirtyVertex(level, vertexKey);  // halved at the next annealing
 }
 
 void AdaptiveGrid::annealDirtyMarkers() {
@@ -100,13 +117,15 @@ void AdaptiveGrid::annealDirtyMarkers() {
   // (their changes add the parents to dirty_ of the coarser level, not yet taken).
   for (int l = geometry_.depth; l > regularDepth_; --l) {
     std::swap(dirty_[l], annealing_[l]);
-    dirty_[l].reset(annealing_[l].size());
-    for (std::uint64_t v : annealing_[l].keys) {
+    dirty_[l].clear();
+    for (std::uint32_t slot : annealing_[l]) dirtyFlag_[l][slot] = 0;
+    for (std::uint32_t slot : annealing_[l]) {
+      const std::uint64_t v = heatInput_[l].keys[slot];
       const std::int64_t m = heat_[l].get(v);
-      const std::int64_t next = std::min(kMaxHeat, m / 2 + heatInput_[l].get(v));
+      const std::int64_t next = std::min(kMaxHeat, m / 2 + heatInput_[l].values[slot]);
       if (next == m) continue;  // converged: stays so until its input changes
-      setHeat(l, v, next);
-      dirty_[l].insert(v);  // not converged yet
+      setHeat(l, v, next);      // changes inputs of level l - 1 only
+      markDirty(l, std::size_t(slot));  // not converged yet
     }
   }
 }
@@ -210,10 +229,11 @@ std::size_t AdaptiveGrid::reluctantEntries() const {
   return entries;
 }
 
-void AdaptiveGrid::resetReluctantState(const double (*x)[3], int n) {
+void AdaptiveGrid::resetReluctantState(const double (*x)[3], const double* radius, int n) {
   const std::size_t levels = std::size_t(geometry_.depth) + 1;
   const int depth = geometry_.depth;
   hostKey_.resize(std::size_t(n));
+  hostRadius_.assign(radius, radius + n);
   referencePosition_.resize(std::size_t(n));
   margin_.resize(std::size_t(n));
   nextAtVertex_.resize(std::size_t(n));
@@ -227,7 +247,9 @@ void AdaptiveGrid::resetReluctantState(const double (*x)[3], int n) {
   }
   dirty_.resize(levels);
   annealing_.resize(levels);
-  for (KeySet& set : dirty_) set.reset(0);
+  dirtyFlag_.resize(levels);
+  for (auto& list : dirty_) list.clear();
+  for (auto& flags : dirtyFlag_) flags.clear();
   lostKept_.assign(levels, {});
   candidates_.resize(levels);
   newRefined_.clear();
@@ -258,12 +280,11 @@ void AdaptiveGrid::resetReluctantState(const double (*x)[3], int n) {
     for (std::size_t s = 0; s < heat_[l].size(); ++s) {
       const std::int64_t m = heat_[l].values[s];
       if (m > 0 && m >= options_.coarseningThreshold) addKept(l, heat_[l].keys[s], 1);
-      if (std::min(kMaxHeat, m / 2 + heatInput_[l].get(heat_[l].keys[s])) != m) dirty_[l].insert(heat_[l].keys[s]);
+      if (std::min(kMaxHeat, m / 2 + heatInput_[l].get(heat_[l].keys[s])) != m) markDirtyVertex(l, heat_[l].keys[s]);
     }
     for (std::size_t s = 0; s < heatInput_[l].size(); ++s) {
-      const std::uint64_t k = heatInput_[l].keys[s];
-      const std::int64_t m = heat_[l].get(k);
-      if (std::min(kMaxHeat, m / 2 + heatInput_[l].values[s]) != m) dirty_[l].insert(k);
+      const std::int64_t m = heat_[l].get(heatInput_[l].keys[s]);
+      if (std::min(kMaxHeat, m / 2 + heatInput_[l].values[s]) != m) markDirty(l, s);
     }
   }
   for (auto& lost : lostKept_) lost.clear();
@@ -274,11 +295,12 @@ void AdaptiveGrid::resetReluctantState(const double (*x)[3], int n) {
 bool AdaptiveGrid::updateReluctantIncrementally(const double (*x)[3], const double (*v)[3], const double* radius,
                                                 int n) {
   // Zeros left behind (markers cooled off, vertices left) pile up: rebuild now and then.
-  if (reluctantEntries() > 2 * keepEntries_ + 4096 * std::size_t(geometry_.depth + 1)) return false;
+  if (reluctantEntries() > 2 * keepEntries_ + 8 * std::size_t(n) + 4096 * std::size_t(geometry_.depth + 1))
+    return false;
   int coarsestFit = geometry_.depth;
   newAdmissible_.resize(std::size_t(n));
   for (int i = 0; i < n; ++i) {
-    newAdmissible_[i] = admissibleFor(radius[i]);
+    newAdmissible_[i] = radius[i] == hostRadius_[i] ? admissible_[i] : admissibleFor(radius[i]);
     coarsestFit = std::min(coarsestFit, newAdmissible_[i]);
   }
   if (coarsestFit != regularDepth_) return false;  // the start-off grid changes: full update
@@ -291,6 +313,7 @@ bool AdaptiveGrid::updateReluctantIncrementally(const double (*x)[3], const doub
     const double moved = std::max({std::abs(x[i][0] - referencePosition_[i][0]),
                                    std::abs(x[i][1] - referencePosition_[i][1]),
                                    std::abs(x[i][2] - referencePosition_[i][2])});
+    hostRadius_[i] = radius[i];
     if (newAdmissible_[i] == admissible_[i] && moved < margin_[i]) continue;
     admissible_[i] = newAdmissible_[i];
     rehostParticle(x, i);
