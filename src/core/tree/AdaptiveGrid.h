@@ -159,9 +159,9 @@ class AdaptiveGrid {
   void linkHost(int i);
   void unlinkHost(int i);
   void addHeatInput(int level, std::uint64_t vertexKey, std::int64_t delta);
-  void markDirty(int level, std::size_t inputSlot);
-  void markDirtyVertex(int level, std::uint64_t vertexKey);
-  void setHeat(int level, std::uint64_t vertexKey, std::int64_t value);
+  std::size_t heatSlot(int level, std::uint64_t vertexKey);
+  void markDirty(int level, std::size_t heatSlot);
+  void setHeat(int level, std::size_t heatSlot, std::int64_t value);
   void addShock(int level, std::uint64_t vertexKey);
   void annealDirtyMarkers();
   void rehostAroundRefined(const double (*x)[3], std::size_t firstRefined);
@@ -220,9 +220,10 @@ class AdaptiveGrid {
   std::vector<int> fragile_;  // margin <= 0: re-derived at every grid change
   std::vector<int> nextAtVertex_, previousAtVertex_;
   std::vector<Markers> firstAtVertex_;  // per level: host vertex -> first particle + 1 (0: none)
-  std::vector<Markers> heatInput_;
-  std::vector<std::vector<std::uint32_t>> dirty_, annealing_;  // per level: slots in heatInput_
-  std::vector<std::vector<char>> dirtyFlag_;                    // per level and slot: in dirty_
+  // Per level, indexed by the marker's slot in heat_: input, and whether listed in dirty_.
+  std::vector<std::vector<std::int64_t>> heatInput_;
+  std::vector<std::vector<char>> dirtyFlag_;
+  std::vector<std::vector<std::uint32_t>> dirty_, annealing_;  // per level: slots in heat_
   std::vector<std::pair<int, std::uint64_t>> removedCells_;  // (level, cell) coarsened
   std::vector<int> rehostQueue_;
   std::vector<char> queued_;

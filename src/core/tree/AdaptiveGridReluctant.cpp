@@ -70,33 +70,35 @@ void AdaptiveGrid::unlinkHost(int i) {
   if (after >= 0) previousAtVertex_[after] = before;
 }
 
+std::size_t AdaptiveGrid::heatSlot(int level, std::uint64_t vertexKey) {
+  // The marker's slot in heat_ (created as 0; slots are stable, entries are never erased)
+  // indexes its input and dirty flag too: one hash look-up per touched vertex.
+  Markers& markers = heat_[level];
+  const std::size_t slot = std::size_t(&markers[vertexKey] - markers.values.data());
+  if (slot >= heatInput_[level].size()) {
+    heatInput_[level].resize(markers.size(), 0);
+    dirtyFlag_[level].resize(markers.size(), 0);
+  }
+  return slot;
+}
+
 void AdaptiveGrid::markDirty(int level, std::size_t slot) {
-  // Dirty vertices by their slot in heatInput_ (stable: entries are never erased), flagged
-  // there: one hash look-up per marked vertex instead of two.
-  std::vector<char>& flags = dirtyFlag_[level];
-  if (flags.size() < heatInput_[level].size()) flags.resize(heatInput_[level].size(), 0);
-  if (flags[slot]) return;
-  flags[slot] = 1;
+  if (dirtyFlag_[level][slot]) return;
+  dirtyFlag_[level][slot] = 1;
   dirty_[level].push_back(std::uint32_t(slot));
 }
 
-void AdaptiveGrid::markDirtyVertex(int level, std::uint64_t vertexKey) {
-  Markers& inputs = heatInput_[level];
-  markDirty(level, std::size_t(&inputs[vertexKey] - inputs.values.data()));
-}
-
 void AdaptiveGrid::addHeatInput(int level, std::uint64_t vertexKey, std::int64_t delta) {
-  Markers& inputs = heatInput_[level];
-  std::int64_t& input = inputs[vertexKey];
-  input += delta;
-  markDirty(level, std::size_t(&input - inputs.values.data()));
+  const std::size_t slot = heatSlot(level, vertexKey);
+  heatInput_[level][slot] += delta;
+  markDirty(level, slot);
 }
 
-void AdaptiveGrid::setHeat(int level, std::uint64_t vertexKey, std::int64_t value) {
-  std::int64_t& marker = heat_[level][vertexKey];
-  const std::int64_t old = marker;
+void AdaptiveGrid::setHeat(int level, std::size_t slot, std::int64_t value) {
+  const std::int64_t old = heat_[level].values[slot];
   if (value == old) return;
-  marker = value;
+  heat_[level].values[slot] = value;
+  const std::uint64_t vertexKey = heat_[level].keys[slot];
   const std::int64_t threshold = options_.coarseningThreshold;
   const bool wasHot = old > 0 && old >= threshold, hot = value > 0 && value >= threshold;
   if (wasHot != hot) addKept(level, vertexKey, hot ? 1 : -1);
@@ -108,8 +110,9 @@ void AdaptiveGrid::setHeat(int level, std::uint64_t vertexKey, std::int64_t valu
 }
 
 void AdaptiveGrid::addShock(int level, std::uint64_t vertexKey) {
-  setHeat(level, vertexKey, std::min(kMaxHeat, heat_[level].get(vertexKey) + options_.shock));
-  markDirtyVertex(level, vertexKey);  // halved at the next annealing
+  const std::size_t slot = heatSlot(level, vertexKey);
+  setHeat(level, slot, std::min(kMaxHeat, heat_[level].values[slot] + options_.shock));
+  markDirty(level, slot);  // halved at the next annealing
 }
 
 void AdaptiveGrid::annealDirtyMarkers() {
@@ -120,12 +123,11 @@ void AdaptiveGrid::annealDirtyMarkers() {
     dirty_[l].clear();
     for (std::uint32_t slot : annealing_[l]) dirtyFlag_[l][slot] = 0;
     for (std::uint32_t slot : annealing_[l]) {
-      const std::uint64_t v = heatInput_[l].keys[slot];
-      const std::int64_t m = heat_[l].get(v);
-      const std::int64_t next = std::min(kMaxHeat, m / 2 + heatInput_[l].values[slot]);
+      const std::int64_t m = heat_[l].values[slot];
+      const std::int64_t next = std::min(kMaxHeat, m / 2 + heatInput_[l][slot]);
       if (next == m) continue;  // converged: stays so until its input changes
-      setHeat(l, v, next);      // changes inputs of level l - 1 only
-      markDirty(l, std::size_t(slot));  // not converged yet
+      setHeat(l, slot, next);   // inserts on level l - 1 only: the slot stays valid
+      markDirty(l, slot);       // not converged yet
     }
   }
 }
@@ -224,7 +226,7 @@ void AdaptiveGrid::rehostAroundRemoved(const double (*x)[3]) {
 
 std::size_t AdaptiveGrid::reluctantEntries() const {
   std::size_t entries = 0;
-  for (const auto* list : {&heat_, &heatInput_, &keepCount_, &firstAtVertex_})
+  for (const auto* list : {&heat_, &keepCount_, &firstAtVertex_})
     for (const Markers& m : *list) entries += m.size();
   return entries;
 }
@@ -241,15 +243,19 @@ void AdaptiveGrid::resetReluctantState(const double (*x)[3], const double* radiu
   queued_.assign(std::size_t(n), 0);
   rehostQueue_.clear();
   fragile_.clear();
-  for (auto* list : {&firstAtVertex_, &heatInput_, &keepCount_}) {
+  for (auto* list : {&firstAtVertex_, &keepCount_}) {
     list->resize(levels);
     for (Markers& m : *list) m.reset(0);
   }
   dirty_.resize(levels);
   annealing_.resize(levels);
   dirtyFlag_.resize(levels);
-  for (auto& list : dirty_) list.clear();
-  for (auto& flags : dirtyFlag_) flags.clear();
+  heatInput_.resize(levels);
+  for (std::size_t l = 0; l < levels; ++l) {
+    dirty_[l].clear();
+    dirtyFlag_[l].assign(heat_[l].size(), 0);
+    heatInput_[l].assign(heat_[l].size(), 0);
+  }
   lostKept_.assign(levels, {});
   candidates_.resize(levels);
   newRefined_.clear();
@@ -261,7 +267,10 @@ void AdaptiveGrid::resetReluctantState(const double (*x)[3], const double* radiu
     const Index3 v = nearestVertex(host_[i], x[i]);
     hostKey_[i] = key(v.i, v.j, v.k);
     linkHost(i);
-    if (host_[i] > regularDepth_) heatInput_[host_[i]][hostKey_[i]] += 1;
+    if (host_[i] > regularDepth_) {
+      const std::size_t slot = heatSlot(host_[i], hostKey_[i]);
+      heatInput_[host_[i]][slot] += 1;
+    }
     for (int d = 0; d < 3; ++d) referencePosition_[i][d] = x[i][d];
     margin_[i] = hostMargin(x[i], admissible_[i], host_[i], descent);
     if (!(margin_[i] > 0.0)) fragile_.push_back(i);
@@ -272,21 +281,20 @@ void AdaptiveGrid::resetReluctantState(const double (*x)[3], const double* radiu
       const std::int64_t m = heat_[l].values[s];
       if (m == 0) continue;
       const VertexIndex w = unpackVertexKey(heat_[l].keys[s]);
-      forEachParentVertex(l - 1, w.i, w.j, w.k, [&](std::uint64_t u) { heatInput_[l - 1][u] += m; });
+      forEachParentVertex(l - 1, w.i, w.j, w.k,
+                          [&](std::uint64_t u) {
+                            const std::size_t slot = heatSlot(l - 1, u);
+                            heatInput_[l - 1][slot] += m;
+                          });
     }
   // Kept counters (hot markers and kept children) and the vertices not at their fixed point.
   // setHeat() keeps both from here on.
-  for (int l = depth; l > regularDepth_; --l) {
+  for (int l = depth; l > regularDepth_; --l)
     for (std::size_t s = 0; s < heat_[l].size(); ++s) {
       const std::int64_t m = heat_[l].values[s];
       if (m > 0 && m >= options_.coarseningThreshold) addKept(l, heat_[l].keys[s], 1);
-      if (std::min(kMaxHeat, m / 2 + heatInput_[l].get(heat_[l].keys[s])) != m) markDirtyVertex(l, heat_[l].keys[s]);
+      if (std::min(kMaxHeat, m / 2 + heatInput_[l][s]) != m) markDirty(l, s);
     }
-    for (std::size_t s = 0; s < heatInput_[l].size(); ++s) {
-      const std::int64_t m = heat_[l].get(heatInput_[l].keys[s]);
-      if (std::min(kMaxHeat, m / 2 + heatInput_[l].values[s]) != m) markDirty(l, s);
-    }
-  }
   for (auto& lost : lostKept_) lost.clear();
   keepEntries_ = reluctantEntries();
   incrementalValid_ = true;
