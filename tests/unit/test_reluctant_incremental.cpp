@@ -31,7 +31,7 @@ struct Cloud {
 
 // Small spheres in a few clusters that contract and expand (many approaching close pairs:
 // refinements; clusters dissolving: coarsening) plus some big ones.
-Cloud clusters(unsigned seed) {
+Cloud clusters(unsigned seed, double bigRadius = 0.03) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0), w(-1.0, 1.0);
   Cloud c;
@@ -51,7 +51,7 @@ Cloud clusters(unsigned seed) {
   for (int i = 0; i < 3; ++i) {
     c.x.push_back({0.1 + 0.8 * u(rng), 0.1 + 0.8 * u(rng), 0.1 + 0.8 * u(rng)});
     c.v.push_back({w(rng), w(rng), w(rng)});
-    c.r.push_back(0.03);
+    c.r.push_back(bigRadius);
   }
   return c;
 }
@@ -155,4 +155,72 @@ TEST(ReluctantIncremental, EqualsTheFullUpdateWithItsOwnPairSearch) {
     EXPECT_GT(t.refinements, 0u) << "seed " << seed;
     EXPECT_GT(t.coarsenings, 0u) << "seed " << seed;
   }
+}
+
+namespace {
+
+// serialise() layout (AdaptiveGrid.cpp): 19 header words (depth at 14, start-off depth at 15),
+// then per level the refined cells, then per level the heat markers as (key, value) pairs.
+constexpr std::size_t kHeaderWords = 19;
+
+// Adds `heat` to every stored heat marker.
+std::vector<std::int64_t> heated(std::vector<std::int64_t> words, std::int64_t heat) {
+  std::size_t at = kHeaderWords;
+  const std::int64_t levels = words[at++];
+  for (std::int64_t l = 0; l < levels; ++l) at += std::size_t(words[at]) + 1;
+  EXPECT_EQ(words[at], levels);
+  ++at;
+  for (std::int64_t l = 0; l < levels; ++l) {
+    const std::size_t count = std::size_t(words[at++]);
+    for (std::size_t s = 1; s < count; s += 2) words[at + s] += heat;
+    at += count;
+  }
+  EXPECT_EQ(at, words.size());
+  return words;
+}
+
+}  // namespace
+
+TEST(ReluctantIncremental, SaturatedMarkersEqualTheFullUpdate) {
+  // Markers near the cap (kMaxHeat = 2^40): children of half the cap sum past it, so the
+  // annealing clamps; the incremental update must clamp exactly where the full one does.
+  // Bigger big spheres: a coarser start-off grid, markers on several levels below it.
+  const double eps = 0.0005;
+  Cloud c = clusters(5, 0.1);
+  AdaptiveGridOptions options;
+  options.type = GridType::Reluctant;
+  options.epsilon = eps;
+  options.pairsFromCaller = true;
+  AdaptiveGrid start(options);
+  Spacetree tree(SpacetreeOptions{eps, spacetree::kMaxSpacetreeLevel});
+  for (int step = 0; step < 20; ++step) {
+    start.update(c.pos(), c.vel(), c.r.data(), c.size());
+    refineForSweepPairs(start, tree, c);
+    for (int i = 0; i < c.size(); ++i)
+      for (int d = 0; d < 3; ++d) c.x[i][d] = std::clamp(c.x[i][d] + 0.001 * c.v[i][d], 0.02, 0.98);
+  }
+  const std::vector<std::int64_t> words = heated(start.serialise(), std::int64_t(1) << 39);
+  AdaptiveGrid incremental = AdaptiveGrid::deserialise(words.data(), words.size(), options);
+  options.incremental = false;
+  AdaptiveGrid full = AdaptiveGrid::deserialise(words.data(), words.size(), options);
+  Spacetree treeB(SpacetreeOptions{eps, spacetree::kMaxSpacetreeLevel});
+  int saturated = 0, incrementalSteps = 0;
+  for (int step = 0; step < 30; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    incremental.update(c.pos(), c.vel(), c.r.data(), c.size());
+    full.update(c.pos(), c.vel(), c.r.data(), c.size());
+    const std::vector<std::int64_t> mine = incremental.serialise();
+    ASSERT_EQ(mine, full.serialise());
+    ASSERT_EQ(incremental.hostLevels(), full.hostLevels());
+    incrementalSteps += incremental.statistics().incremental;
+    if (incremental.statistics().incremental)
+      saturated += int(std::count(mine.begin() + kHeaderWords, mine.end(), std::int64_t(1) << 40));
+    refineForSweepPairs(incremental, tree, c);
+    refineForSweepPairs(full, treeB, c);
+    ASSERT_EQ(incremental.serialise(), full.serialise());
+    for (int i = 0; i < c.size(); ++i)
+      for (int d = 0; d < 3; ++d) c.x[i][d] = std::clamp(c.x[i][d] + 0.001 * c.v[i][d], 0.02, 0.98);
+  }
+  EXPECT_GT(incrementalSteps, 20);
+  EXPECT_GT(saturated, 0) << "the cap was never reached in an incremental step";
 }
