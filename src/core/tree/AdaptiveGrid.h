@@ -160,6 +160,7 @@ class AdaptiveGrid {
   void unlinkHost(int i);
   void addHeatInput(int level, std::uint64_t vertexKey, std::int64_t delta);
   std::size_t heatSlot(int level, std::uint64_t vertexKey);
+  std::uint32_t parentSlots(int level, std::size_t heatSlot);
   void markDirty(int level, std::size_t heatSlot);
   void setHeat(int level, std::size_t heatSlot, std::int64_t value);
   void addShock(int level, std::uint64_t vertexKey);
@@ -224,6 +225,9 @@ class AdaptiveGrid {
   std::vector<std::vector<std::int64_t>> heatInput_;
   std::vector<std::vector<char>> dirtyFlag_;
   std::vector<std::vector<std::uint32_t>> dirty_, annealing_;  // per level: slots in heat_
+  // Per level and slot: where its parents' slots start in parentPool_ (kNoParents: not listed).
+  static constexpr std::uint32_t kNoParents = ~std::uint32_t(0);
+  std::vector<std::vector<std::uint32_t>> parentsAt_, parentPool_;
   std::vector<std::pair<int, std::uint64_t>> removedCells_;  // (level, cell) coarsened
   std::vector<int> rehostQueue_;
   std::vector<char> queued_;

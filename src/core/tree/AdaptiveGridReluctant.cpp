@@ -78,8 +78,26 @@ std::size_t AdaptiveGrid::heatSlot(int level, std::uint64_t vertexKey) {
   if (slot >= heatInput_[level].size()) {
     heatInput_[level].resize(markers.size(), 0);
     dirtyFlag_[level].resize(markers.size(), 0);
+    parentsAt_[level].resize(markers.size(), kNoParents);
   }
   return slot;
+}
+
+std::uint32_t AdaptiveGrid::parentSlots(int level, std::size_t slot) {
+  // The slots of a marker's parents on level - 1, listed once (count, then the slots): a
+  // changing marker then updates its parents' inputs without hashing.
+  std::uint32_t at = parentsAt_[level][slot];
+  if (at != kNoParents) return at;
+  std::vector<std::uint32_t>& pool = parentPool_[level];
+  at = std::uint32_t(pool.size());
+  pool.push_back(0);
+  const VertexIndex w = unpackVertexKey(heat_[level].keys[slot]);
+  forEachParentVertex(level - 1, w.i, w.j, w.k, [&](std::uint64_t u) {
+    pool.push_back(std::uint32_t(heatSlot(level - 1, u)));
+    ++pool[at];
+  });
+  parentsAt_[level][slot] = at;
+  return at;
 }
 
 void AdaptiveGrid::markDirty(int level, std::size_t slot) {
@@ -103,9 +121,13 @@ void AdaptiveGrid::setHeat(int level, std::size_t slot, std::int64_t value) {
   const bool wasHot = old > 0 && old >= threshold, hot = value > 0 && value >= threshold;
   if (wasHot != hot) addKept(level, vertexKey, hot ? 1 : -1);
   if (level - 1 > regularDepth_) {  // parents anneal on levels below the start-off grid only
-    const VertexIndex w = unpackVertexKey(vertexKey);
-    forEachParentVertex(level - 1, w.i, w.j, w.k,
-                        [&](std::uint64_t u) { addHeatInput(level - 1, u, value - old); });
+    const std::uint32_t at = parentSlots(level, slot);
+    const std::vector<std::uint32_t>& pool = parentPool_[level];
+    std::vector<std::int64_t>& inputs = heatInput_[level - 1];
+    for (std::uint32_t p = at + 1; p <= at + pool[at]; ++p) {
+      inputs[pool[p]] += value - old;
+      markDirty(level - 1, pool[p]);
+    }
   }
 }
 
@@ -251,10 +273,14 @@ void AdaptiveGrid::resetReluctantState(const double (*x)[3], const double* radiu
   annealing_.resize(levels);
   dirtyFlag_.resize(levels);
   heatInput_.resize(levels);
+  parentsAt_.resize(levels);
+  parentPool_.resize(levels);
   for (std::size_t l = 0; l < levels; ++l) {
     dirty_[l].clear();
     dirtyFlag_[l].assign(heat_[l].size(), 0);
     heatInput_[l].assign(heat_[l].size(), 0);
+    parentsAt_[l].assign(heat_[l].size(), kNoParents);  // slots of the last full update
+    parentPool_[l].clear();
   }
   lostKept_.assign(levels, {});
   candidates_.resize(levels);
