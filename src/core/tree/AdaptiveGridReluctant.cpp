@@ -199,7 +199,17 @@ void AdaptiveGrid::rehostAroundRefined(const double (*x)[3], std::size_t firstRe
     const int l = newRefined_[r].first;
     const VertexIndex c = unpackVertexKey(newRefined_[r].second);
     const std::int64_t last = cellsPerAxis(l + 1) - 1;
+    // Readers lie within half a child cell of C: a box test first (0.6 for the rounding).
+    const double child = meshSize_[l + 1];
+    double lo[3], hi[3];
+    const std::int64_t corner[3] = {c.i, c.j, c.k};
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = geometry_.origin[d] + (3.0 * double(corner[d]) - 0.6) * child;
+      hi[d] = geometry_.origin[d] + (3.0 * double(corner[d]) + 3.6) * child;
+    }
     auto reads = [&](const double p[3]) {
+      if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] || p[2] < lo[2] || p[2] > hi[2])
+        return false;
       const Index3 cell = cellOf(l, p);
       if (cell.i == c.i && cell.j == c.j && cell.k == c.k) return true;
       const Index3 w = nearestVertex(l + 1, p);
