@@ -14,9 +14,9 @@
 // are kept sparsely in one hash set per level.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
-#include <algorithm>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -179,7 +179,7 @@ class AdaptiveGrid {
   bool haveGeometry_ = false;
   int regularDepth_ = 0;
   std::vector<CellSet> refined_;  // per level, cells (not above regularDepth_) that are refined
-  std::vector<Markers> heat_;     // per level, reluctant heat markers of vertices
+  std::vector<Markers> heat_;     // per level, reluctant heat markers of vertices (0: none)
   std::vector<Markers> heatNext_; // scratch of updateHeatMarkers(), swapped with heat_
   std::vector<int> host_, admissible_;
   std::vector<double> required_;
