@@ -10,10 +10,6 @@
 namespace spacetree {
 
 namespace {
-// Heat markers sum their children's markers (up to 343 per vertex per level): saturate
-// instead of overflowing; anything this hot vetoes coarsening anyway.
-constexpr std::int64_t kMaxHeat = std::int64_t(1) << 40;
-
 std::uint64_t key(std::int64_t i, std::int64_t j, std::int64_t k) { return packVertexKey(i, j, k); }
 }  // namespace
 
@@ -92,6 +88,11 @@ bool AdaptiveGrid::isRefinedAt(int level, const double p[3]) const {
 }
 
 int AdaptiveGrid::computeHost(const double p[3], int admissible) const {
+  int descent;
+  return hostPath(p, admissible, descent);
+}
+
+int AdaptiveGrid::hostPath(const double p[3], int admissible, int& descent) const {
   // Levels above the start-off grid are refined everywhere: no look-up needed there.
   int l = std::max(0, std::min(regularDepth_, admissible));
   while (l < admissible) {
@@ -99,6 +100,7 @@ int AdaptiveGrid::computeHost(const double p[3], int admissible) const {
     if (!isRefined(l, c.i, c.j, c.k)) break;
     ++l;
   }
+  descent = l;
   while (l > 0) {
     const Index3 v = nearestVertex(l, p);
     if (!isHanging(l, v.i, v.j, v.k)) break;
@@ -118,15 +120,17 @@ void AdaptiveGrid::rehostAll(const double (*x)[3], int n) {
 
 bool AdaptiveGrid::needsNewGeometry(const double (*x)[3], const double* radius, int n) const {
   if (!haveGeometry_) return true;
-  double minNeed = std::numeric_limits<double>::infinity();
+  // requiredMeshSize() grows with the radius: the extreme radii decide.
+  double minRadius = std::numeric_limits<double>::infinity(), maxRadius = -minRadius;
   for (int i = 0; i < n; ++i) {
     for (int d = 0; d < 3; ++d)
       if (!(x[i][d] >= geometry_.origin[d] && x[i][d] <= geometry_.origin[d] + geometry_.rootSize))
         return true;
-    const double need = pairSearch_.requiredMeshSize(radius[i]);
-    if (need > geometry_.rootSize) return true;
-    minNeed = std::min(minNeed, need);
+    minRadius = std::min(minRadius, radius[i]);
+    maxRadius = std::max(maxRadius, radius[i]);
   }
+  if (n > 0 && pairSearch_.requiredMeshSize(maxRadius) > geometry_.rootSize) return true;
+  const double minNeed = n > 0 ? pairSearch_.requiredMeshSize(minRadius) : std::numeric_limits<double>::infinity();
   // A smaller particle than the finest level was made for: go deeper.
   return geometry_.depth < options_.maxLevel && minNeed > 0.0 && meshSize(geometry_.depth) / 3.0 >= minNeed;
 }
@@ -194,8 +198,12 @@ bool AdaptiveGrid::refineCell(int level, std::int64_t i, std::int64_t j, std::in
           if (isHanging(level + 1, a, b, c)) created.push_back(key(a, b, c));
   refined_[level].insert(key(i, j, k));
   ++gridVersion_;
-  if (trackRefinements_) newRefined_.emplace_back(level, key(i, j, k));
+  if (trackRefinements_ || reluctantTracking()) newRefined_.emplace_back(level, key(i, j, k));
   for (std::uint64_t v : created) {
+    if (reluctantTracking()) {
+      addShock(level + 1, v);  // also the marker's parents' inputs, kept counters, dirty sets
+      continue;
+    }
     std::int64_t& h = heat_[level + 1][v];
     h = std::min(kMaxHeat, h + options_.shock);
   }
@@ -248,6 +256,10 @@ void AdaptiveGrid::refineForPairs(const double (*x)[3], const double (*v)[3], co
   for (std::size_t k = 0; k < count; ++k) {
     const int a = first[k], b = second[k];
     if (a < 0 || b < 0 || a >= n || b >= n) continue;
+    // Refinement only drops particles, so a pair of two particles already on their admissible
+    // levels never triggers one (in any round of refineForClosePairs): skip it before the
+    // approach test (random loads of x and v).
+    if (host_[a] >= admissible_[a] && host_[b] >= admissible_[b]) continue;
     if (v) {
       double approach = 0.0;
       for (int d = 0; d < 3; ++d) approach += (x[b][d] - x[a][d]) * (v[b][d] - v[a][d]);
@@ -267,6 +279,7 @@ void AdaptiveGrid::refineForClosePairs(const double (*x)[3], const double* radiu
   // Repeated while drops happen: one sweep may cascade over several levels.
   for (int round = 0; round <= geometry_.depth; ++round) {
     bool refined = false;
+    const std::size_t firstRefined = newRefined_.size();
     for (const auto& pair : closePairs_) {
       for (int side = 0; side < 2; ++side) {
         const int p = side ? pair.second : pair.first, q = side ? pair.first : pair.second;
@@ -297,20 +310,11 @@ void AdaptiveGrid::refineForClosePairs(const double (*x)[3], const double* radiu
       }
     }
     if (!refined) break;
-    rehostAll(x, n);
+    if (reluctantTracking())
+      rehostAroundRefined(x, firstRefined);  // only particles that read a refined cell
+    else
+      rehostAll(x, n);
   }
-}
-
-template <class F>
-void AdaptiveGrid::forEachParentVertex(int level, std::int64_t i, std::int64_t j, std::int64_t k,
-                                       F&& f) const {
-  // Child w of vertex u: w lies in the closure of the 2^d cells around u, i.e. |w - 3u| <= 3.
-  const std::int64_t n = cellsPerAxis(level);
-  auto lo = [](std::int64_t w) { return std::max<std::int64_t>(0, (w - 3 + 2) / 3); };  // ceil((w-3)/3), w >= 0
-  auto hi = [n](std::int64_t w) { return std::min<std::int64_t>(n, (w + 3) / 3); };
-  for (std::int64_t a = lo(i); a <= hi(i); ++a)
-    for (std::int64_t b = lo(j); b <= hi(j); ++b)
-      for (std::int64_t c = lo(k); c <= hi(k); ++c) f(key(a, b, c));
 }
 
 void AdaptiveGrid::updateHeatMarkers(const double (*x)[3], int n) {
@@ -357,7 +361,8 @@ void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
     for (int l = regularDepth_ + 1; l <= depth; ++l) {
       keep[l].reset(heat_[l].size());
       for (std::size_t s = 0; s < heat_[l].size(); ++s)
-        if (heat_[l].values[s] >= options_.coarseningThreshold) keep[l].insert(heat_[l].keys[s]);
+        if (heat_[l].values[s] > 0 && heat_[l].values[s] >= options_.coarseningThreshold)
+          keep[l].insert(heat_[l].keys[s]);  // (the incremental annealing leaves zeros behind)
     }
   } else {
     std::vector<std::size_t> perLevel(std::size_t(depth) + 1, 0);
@@ -434,8 +439,10 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
   stats_.refinements = 0;
   stats_.coarsenings = 0;
   n = std::max(n, 0);
-  if (options_.type == GridType::Adaptive && options_.incremental && incrementalValid_ && n > 0 &&
-      n == int(host_.size()) && !needsNewGeometry(x, radius, n) && updateIncrementally(x, radius, n)) {
+  if (options_.type != GridType::Regular && options_.incremental && incrementalValid_ && n > 0 &&
+      n == int(host_.size()) && !needsNewGeometry(x, radius, n) &&
+      (options_.type == GridType::Adaptive ? updateIncrementally(x, radius, n)
+                                           : updateReluctantIncrementally(x, v, radius, n))) {
     collectStatistics();
     return;
   }
@@ -485,6 +492,7 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
     if (options_.type == GridType::Reluctant) rehostAll(x, n);
   }
   if (options_.type == GridType::Adaptive && options_.incremental) resetIncrementalState(x, n);
+  if (options_.type == GridType::Reluctant && options_.incremental) resetReluctantState(x, radius, n);
   collectStatistics();
 }
 
@@ -625,6 +633,8 @@ void AdaptiveGrid::coarsenAroundLostVertices() {
     refined_[m].eraseAll(removals);
     ++gridVersion_;
     stats_.coarsenings += removals.size();
+    if (reluctantTracking())
+      for (std::uint64_t cellKey : removals) removedCells_.emplace_back(m, cellKey);
     if (m - 1 >= regularDepth_)
       for (std::uint64_t cellKey : removals) {  // the parent lost a refined child
         const VertexIndex c = unpackVertexKey(cellKey);
@@ -789,8 +799,13 @@ std::vector<std::int64_t> AdaptiveGrid::serialise() const {
     for (std::size_t s = 0; s < order.size(); ++s) order[s] = s;
     std::sort(order.begin(), order.end(),
               [&markers](std::size_t a, std::size_t b) { return markers.keys[a] < markers.keys[b]; });
-    w.push_back(2 * std::int64_t(markers.keys.size()));  // words: (key, value) pairs
+    // Markers of value 0 (left behind by the incremental annealing; the full one drops them)
+    // are no markers.
+    std::size_t nonZero = 0;
+    for (std::int64_t value : markers.values) nonZero += value != 0;
+    w.push_back(2 * std::int64_t(nonZero));  // words: (key, value) pairs
     for (std::size_t s : order) {
+      if (markers.values[s] == 0) continue;
       w.push_back(std::int64_t(markers.keys[s]));
       w.push_back(markers.values[s]);
     }

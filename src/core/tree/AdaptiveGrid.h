@@ -14,6 +14,8 @@
 // are kept sparsely in one hash set per level.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -39,10 +41,12 @@ struct AdaptiveGridOptions {
   // Reluctant only: the caller reports the close pairs its own sweep found (refineForPairs)
   // instead of update() searching them with a second sweep.
   bool pairsFromCaller = false;
-  // Adaptive only: the persistent grid re-hosts only particles whose admissible level or host
-  // vertex changed since the last update and coarsens only around the vertices they left
-  // (kept-vertex counters instead of re-deriving the tree grammar from every particle). The
-  // result is the grid a full update gives (tested); false forces the full update.
+  // Adaptive and reluctant: the persistent grid re-hosts only particles whose host may have
+  // changed since the last update and coarsens only around the vertices that stopped being
+  // kept (kept-vertex counters instead of re-deriving the tree grammar from every particle);
+  // the reluctant grid anneals only the heat markers whose inputs changed or that have not
+  // converged yet. The result is the grid (cells, markers, hosts) a full update gives
+  // (tested); false forces the full update.
   bool incremental = true;
 };
 
@@ -60,7 +64,8 @@ class AdaptiveGrid {
   // Reluctant grid with pairsFromCaller: refines for the pairs (first[k], second[k]) that the
   // sweep on this step's tree found (bounding spheres + eps overlap), keeping those that
   // approach (v may be nullptr). The refinement is what the paper triggers from inside the
-  // traversal; particles drop into the new cells at the next update().
+  // traversal; particles drop into the new cells at once (hosts re-derived). x must be the
+  // positions of the last update().
   void refineForPairs(const double (*x)[3], const double (*v)[3], const double* radius, int n,
                       const int* first, const int* second, std::size_t count);
 
@@ -105,6 +110,9 @@ class AdaptiveGrid {
   static AdaptiveGridOptions serialisedOptions(const std::int64_t* words, std::size_t count);
 
  private:
+  // Heat markers sum their children's markers (up to 343 per vertex per level): saturate
+  // instead of overflowing; anything this hot vetoes coarsening anyway.
+  static constexpr std::int64_t kMaxHeat = std::int64_t(1) << 40;
   using CellSet = VertexKeySet;  // open addressing: look-ups dominate the update
   using Markers = VertexCounters;
   using KeySet = VertexKeySet;
@@ -123,6 +131,8 @@ class AdaptiveGrid {
   bool cellExists(int level, std::int64_t i, std::int64_t j, std::int64_t k) const;
   bool isHanging(int level, std::int64_t i, std::int64_t j, std::int64_t k) const;
   int computeHost(const double p[3], int admissible) const;
+  // computeHost, also giving the level where the descent stopped (before the lifts).
+  int hostPath(const double p[3], int admissible, int& descent) const;
   void rehostAll(const double (*x)[3], int n);
   bool refineCell(int level, std::int64_t i, std::int64_t j, std::int64_t k);
   bool refineAroundVertex(int level, const Index3& v);
@@ -140,6 +150,25 @@ class AdaptiveGrid {
   bool isBlocked(int level, std::int64_t i, std::int64_t j, std::int64_t k) const;
   void coarsenAroundLostVertices();
   int admissibleFor(double radius);
+  // Incremental reluctant update (options_.incremental), AdaptiveGridReluctant.cpp.
+  bool reluctantTracking() const { return options_.type == GridType::Reluctant && incrementalValid_; }
+  bool updateReluctantIncrementally(const double (*x)[3], const double (*v)[3], const double* radius, int n);
+  void resetReluctantState(const double (*x)[3], const double* radius, int n);
+  double hostMargin(const double p[3], int admissible, int host, int descent) const;
+  void rehostParticle(const double (*x)[3], int i);
+  void linkHost(int i);
+  void unlinkHost(int i);
+  void addHeatInput(int level, std::uint64_t vertexKey, std::int64_t delta);
+  std::size_t heatSlot(int level, std::uint64_t vertexKey);
+  std::uint32_t parentSlots(int level, std::size_t heatSlot);
+  void markDirty(int level, std::size_t heatSlot);
+  void setHeat(int level, std::size_t heatSlot, std::int64_t value);
+  void addShock(int level, std::uint64_t vertexKey);
+  void annealDirtyMarkers();
+  void rehostAroundRefined(const double (*x)[3], std::size_t firstRefined);
+  void rehostAroundRemoved(const double (*x)[3]);
+  void rehostCandidates(const double (*x)[3]);
+  std::size_t reluctantEntries() const;
   // Vertices of `level` whose 7^3 children on level + 1 contain child vertex (i, j, k).
   template <class F>
   void forEachParentVertex(int level, std::int64_t i, std::int64_t j, std::int64_t k, F&& f) const;
@@ -150,7 +179,7 @@ class AdaptiveGrid {
   bool haveGeometry_ = false;
   int regularDepth_ = 0;
   std::vector<CellSet> refined_;  // per level, cells (not above regularDepth_) that are refined
-  std::vector<Markers> heat_;     // per level, reluctant heat markers of vertices
+  std::vector<Markers> heat_;     // per level, reluctant heat markers of vertices (0: none)
   std::vector<Markers> heatNext_; // scratch of updateHeatMarkers(), swapped with heat_
   std::vector<int> host_, admissible_;
   std::vector<double> required_;
@@ -179,6 +208,31 @@ class AdaptiveGrid {
   std::size_t keepEntries_ = 0;  // counter entries after the last rebuild
   double lastRadius_ = -1.0;
   int lastAdmissible_ = 0;
+
+  // Incremental state (Reluctant; keepCount_ counts hot markers + kept children there):
+  // per particle the position of its last host derivation and how far it may move from it
+  // before the derivation could read another cell or vertex (<= 0: always re-derived);
+  // particles listed per host vertex (to find those under a changed cell); per vertex the
+  // heat marker's input (particles hosted + children's markers) and the vertices whose marker
+  // may change at the next annealing.
+  std::vector<std::array<double, 3>> referencePosition_;
+  std::vector<double> margin_;
+  std::vector<double> hostRadius_;  // radius of the last admissible level derivation
+  std::vector<int> fragile_;  // margin <= 0: re-derived at every grid change
+  std::vector<int> nextAtVertex_, previousAtVertex_;
+  std::vector<Markers> firstAtVertex_;  // per level: host vertex -> first particle + 1 (0: none)
+  // Per level, indexed by the marker's slot in heat_: input, and whether listed in dirty_.
+  std::vector<std::vector<std::int64_t>> heatInput_;
+  std::vector<std::vector<char>> dirtyFlag_;
+  std::vector<std::vector<std::uint32_t>> dirty_, annealing_;  // per level: slots in heat_
+  // Per level and slot: where its parents' slots start in parentPool_ (kNoParents: not listed).
+  static constexpr std::uint32_t kNoParents = ~std::uint32_t(0);
+  std::vector<std::vector<std::uint32_t>> parentsAt_, parentPool_;
+  std::vector<std::pair<int, std::uint64_t>> removedCells_;  // (level, cell) coarsened
+  std::vector<int> rehostQueue_;
+  std::vector<char> queued_;
+  std::vector<int> newAdmissible_;
+  std::size_t rehostCount_ = 0;
 };
 
 template <class F>
@@ -200,6 +254,18 @@ void AdaptiveGrid::forEachLeafCell(F&& f) const {
           for (std::int64_t e = 3 * c.k; e < 3 * c.k + 3; ++e)
             if (!isRefined(l, a, b, e)) f(l, a, b, e);
     }
+}
+
+template <class F>
+void AdaptiveGrid::forEachParentVertex(int level, std::int64_t i, std::int64_t j, std::int64_t k,
+                                       F&& f) const {
+  // Child w of vertex u: w lies in the closure of the 2^d cells around u, i.e. |w - 3u| <= 3.
+  const std::int64_t n = cellsPerAxis(level);
+  auto lo = [](std::int64_t w) { return std::max<std::int64_t>(0, (w - 3 + 2) / 3); };  // ceil((w-3)/3), w >= 0
+  auto hi = [n](std::int64_t w) { return std::min<std::int64_t>(n, (w + 3) / 3); };
+  for (std::int64_t a = lo(i); a <= hi(i); ++a)
+    for (std::int64_t b = lo(j); b <= hi(j); ++b)
+      for (std::int64_t c = lo(k); c <= hi(k); ++c) f(packVertexKey(a, b, c));
 }
 
 }  // namespace spacetree
