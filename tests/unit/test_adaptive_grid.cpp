@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "moving_spheres.h"
 #include "tree/AdaptiveGrid.h"
 #include "tree/Spacetree.h"
 
@@ -24,22 +25,7 @@ namespace {
 
 using PairSet = std::set<std::pair<int, int>>;
 
-struct Scene {
-  std::vector<std::array<double, 3>> x, v;
-  std::vector<double> r;
-  void add(std::array<double, 3> px, std::array<double, 3> pv, double pr) {
-    x.push_back(px);
-    v.push_back(pv);
-    r.push_back(pr);
-  }
-  int size() const { return int(r.size()); }
-  const double (*pos() const)[3] { return reinterpret_cast<const double(*)[3]>(x.data()); }
-  const double (*vel() const)[3] { return reinterpret_cast<const double(*)[3]>(v.data()); }
-  void move(double dt) {
-    for (int i = 0; i < size(); ++i)
-      for (int d = 0; d < 3; ++d) x[i][d] += dt * v[i][d];
-  }
-};
+using Scene = MovingSpheres;
 
 bool isPair(const Scene& s, int i, int j, double eps) {
   double d2 = 0.0;

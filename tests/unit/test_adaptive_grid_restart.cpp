@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "moving_spheres.h"
 #include "tree/AdaptiveGrid.h"
 #include "tree/Spacetree.h"
 
@@ -23,17 +24,7 @@ using spacetree::SpacetreeOptions;
 
 namespace {
 
-struct Scene {
-  std::vector<std::array<double, 3>> x, v;
-  std::vector<double> r;
-  int size() const { return int(r.size()); }
-  const double (*pos() const)[3] { return reinterpret_cast<const double(*)[3]>(x.data()); }
-  const double (*vel() const)[3] { return reinterpret_cast<const double(*)[3]>(v.data()); }
-  void move(double dt) {
-    for (int i = 0; i < size(); ++i)
-      for (int d = 0; d < 3; ++d) x[i][d] += dt * v[i][d];
-  }
-};
+using Scene = MovingSpheres;
 
 // Small grains and a few big ones flying through them: the grid refines ahead of the big ones
 // and coarsens behind them, so its state after a few steps is far from the start-off grid.

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "moving_spheres.h"
 #include "tree/AdaptiveGrid.h"
 #include "tree/Spacetree.h"
 
@@ -21,13 +22,7 @@ using spacetree::SpacetreeOptions;
 
 namespace {
 
-struct Cloud {
-  std::vector<std::array<double, 3>> x, v;
-  std::vector<double> r;
-  int size() const { return int(r.size()); }
-  const double (*pos() const)[3] { return reinterpret_cast<const double(*)[3]>(x.data()); }
-  const double (*vel() const)[3] { return reinterpret_cast<const double(*)[3]>(v.data()); }
-};
+using Cloud = MovingSpheres;
 
 // Small spheres in a few clusters that contract and expand (many approaching close pairs:
 // refinements; clusters dissolving: coarsening) plus some big ones.
