@@ -11,6 +11,7 @@
 // admissible level) and lift (to a coarser one when a particle grows) happen there.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -97,6 +98,11 @@ class Spacetree {
     bool sortedByX;           // crowded: [begin, bigBegin) is ordered by x (sweep and prune)
     std::int32_t bigBegin;    // crowded: [bigBegin, end) holds the much bigger ones, unsorted
     double maxSmallRadius;    // of [begin, bigBegin)
+    std::int32_t box;         // crowded: its entry in Level::boxes, else -1
+  };
+  // Bounding box of particle centres.
+  struct Box {
+    double lo[3], hi[3];
   };
   // Vertices holding at least this many particles are ordered by x, and pairs of two such
   // vertices (or within one) are pruned by their x distance before the exact test. Regular
@@ -106,23 +112,32 @@ class Spacetree {
   struct Level {
     double meshSize = 0.0;
     std::vector<Vertex> vertices;         // sorted by key
+    std::vector<Box> boxes;               // of the crowded vertices' [begin, bigBegin)
     VertexLookup lookup;                  // coordinates -> position in `vertices`
     // Virtual-link candidates for finer vertices: precomputed per coarse vertex when many
     // finer vertices will ask (dense fine levels), else gathered on demand and cached.
     bool precomputedNeighbourhoods = false;
     CoarseNeighbourhoods neighbourhoods;
   };
-  // Coarse particles near the last ancestor vertex gathered on one coarser level.
+  // Coarse particles near the last ancestor vertex gathered on one coarser level: those of
+  // plain vertices, and the crowded vertices (slots), whose particles are pruned by position.
   struct AncestorCache {
     std::uint64_t ancestorKey = ~std::uint64_t(0);
     std::vector<std::int32_t> candidates;
+    std::vector<std::int32_t> crowdedVertices;
   };
 
   // The traversal; onPair(a, b) receives positions in the sorted arrays.
-  // pruneScale: pairs of crowded vertices are skipped when their x distance exceeds
+  // pruneScale: pairs of crowded vertices are skipped when a coordinate difference exceeds
   // (r_max + r_max' + 2 eps) pruneScale, a bound at or above the visitor's cut-off.
   template <class PairFunction>
   void sweep(PairFunction&& onPair, double pruneScale);
+  // Pairs of two vertex-connected vertices of one level, at least one of them crowded: only
+  // particles within reach of the other vertex's bounding box take part (a slab along the
+  // shared face, edge or corner), then a sweep along x. Returns the comparisons made.
+  template <class PairFunction>
+  std::uint64_t sweepCrowdedPair(const Level& level, const Vertex& v, const Vertex& nb, double halo,
+                                 double pruneScale, PairFunction& onPair);
   // Relative margin of that bound over the cut-off (round-off of the x difference).
   static constexpr double kPruneMargin = 1e-9;
   int hostLevel(double required) const;
@@ -132,10 +147,31 @@ class Spacetree {
   void clear(int n, int nActive);  // forget the last build
   void resetLevels(const std::array<double, 3>& origin, double rootSize, int depth);
   void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
-  std::int32_t sortRangeByX(std::int32_t begin, std::int32_t end);  // returns bigBegin
+  // Orders the sort keys [begin, end) of one crowded vertex; returns its bigBegin.
+  std::int32_t orderCrowdedVertex(std::int32_t begin, std::int32_t end, const double (*x)[3], const double* radius);
   void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
-                                   std::int64_t ak, std::vector<std::int32_t>& out) const;
+                                   std::int64_t ak, AncestorCache& out) const;
   bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
+  Box boxOf(std::int32_t begin, std::int32_t end) const;  // of the centres in [begin, end)
+  // Box of the vertex's [begin, bigBegin): stored for crowded vertices, computed otherwise.
+  Box smallBox(const Level& level, const Vertex& v) const;
+  // Positions [begin, end) ordered by x: the first one with x - x_q <= reach, and the first
+  // one after it with x_q - x > reach. Bounds are tested on coordinate differences, as the
+  // visitor's distance is, so rounding cannot drop a pair the visitor would accept.
+  std::int32_t firstWithinX(std::int32_t begin, std::int32_t end, double x, double reach) const {
+    return std::int32_t(std::partition_point(sx_.data() + begin, sx_.data() + end,
+                                             [&](double xq) { return x - xq > reach; }) -
+                        sx_.data());
+  }
+  std::int32_t endWithinX(std::int32_t begin, std::int32_t end, double x, double reach) const {
+    return std::int32_t(std::partition_point(sx_.data() + begin, sx_.data() + end,
+                                             [&](double xq) { return xq - x <= reach; }) -
+                        sx_.data());
+  }
+  // Positions in [begin, end) (ordered by x when sorted) whose centre lies within `reach` of
+  // the box on every axis, in order; their own bounding box goes to `near`.
+  void particlesNearBox(std::int32_t begin, std::int32_t end, bool sorted, const Box& box, double reach,
+                        std::vector<std::int32_t>& out, Box& near) const;
 
   SpacetreeOptions options_;
   double rootSize_ = 0.0;
@@ -152,8 +188,14 @@ class Spacetree {
   std::vector<KeyedIndex> sortKeys_, sortScratch_;
   std::vector<AncestorCache> ancestorCaches_;
   std::vector<int> populatedCoarser_;
-  std::vector<std::int32_t> order_;
+  struct XAndId {
+    double x;
+    std::int32_t id;
+  };
+  std::vector<XAndId> byX_;
+  std::vector<std::int32_t> bigIds_, crowdedBigBegin_;
   std::vector<double> scratchValues_;
+  std::vector<std::int32_t> nearA_, nearB_;  // sweepCrowdedPair
 
   SpacetreeStatistics stats_;
 };
@@ -231,25 +273,8 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
         if (w == VertexLookup::kAbsent) continue;
         const Vertex& nb = level.vertices[w];
         if (v.active == 0 && nb.active == 0) continue;
-        if (v.sortedByX && nb.sortedByX) {
-          // Both ordered by x: a window of nb per particle of v (sweep and prune).
-          const double reach = (v.maxSmallRadius + nb.maxSmallRadius + halo) * pruneScale;
-          const bool bothActive = allActive && nb.active == nb.end - nb.begin;
-          std::int32_t start = nb.begin;
-          for (std::int32_t a = v.begin; a < v.bigBegin; ++a) {
-            const double lo = sx_[a] - reach, hi = sx_[a] + reach;
-            while (start < nb.bigBegin && sx_[start] < lo) ++start;
-            for (std::int32_t b = start; b < nb.bigBegin && sx_[b] <= hi; ++b) {
-              if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
-              ++candidatePairs;
-            }
-          }
-          // The big ones of either vertex against everything of the other, unpruned.
-          for (std::int32_t a = v.begin; a < v.end; ++a)
-            for (std::int32_t b = a < v.bigBegin ? nb.bigBegin : nb.begin; b < nb.end; ++b)
-              if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
-          candidatePairs += std::uint64_t(v.bigBegin - v.begin) * (nb.end - nb.bigBegin) +
-                            std::uint64_t(v.end - v.bigBegin) * (nb.end - nb.begin);
+        if (v.sortedByX || nb.sortedByX) {
+          candidatePairs += sweepCrowdedPair(level, v, nb, halo, pruneScale, onPair);
           continue;
         }
         if (allActive || nb.active == nb.end - nb.begin) {
@@ -269,41 +294,107 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
       const double vx = origin_[0] + v.index.i * h;
       const double vy = origin_[1] + v.index.j * h;
       const double vz = origin_[2] + v.index.k * h;
+      // A link to coarse particle q pairs it with this vertex's particles; on a crowded vertex
+      // only with those whose x lies within reach of q's.
+      auto link = [&](std::int32_t q) {
+        const double dx = sx_[q] - vx, dy = sy_[q] - vy, dz = sz_[q] - vz;
+        const double reach = sr_[q] + linkReach;
+        if (dx * dx + dy * dy + dz * dz >= reach * reach) return;
+        ++virtualLinks;
+        const bool qActive = isActive(q);
+        if (!qActive && v.active == 0) return;
+        std::int32_t smallBegin = v.begin, smallEnd = v.bigBegin;  // the whole vertex if plain
+        if (v.sortedByX) {
+          const double pairReach = (sr_[q] + v.maxSmallRadius + halo) * pruneScale;
+          smallBegin = firstWithinX(v.begin, v.bigBegin, sx_[q], pairReach);
+          smallEnd = endWithinX(smallBegin, v.bigBegin, sx_[q], pairReach);
+        }
+        for (std::int32_t a = smallBegin; a < smallEnd; ++a)
+          if (qActive || allActive || isActive(a)) onPair(a, q);
+        for (std::int32_t a = v.bigBegin; a < v.end; ++a)
+          if (qActive || allActive || isActive(a)) onPair(a, q);
+        candidatePairs += std::uint64_t(smallEnd - smallBegin) + std::uint64_t(v.end - v.bigBegin);
+      };
       for (int m : populatedCoarser_) {
+        const Level& coarse = levels_[m];
         const std::int64_t s = kPowersOfThree[l - m];
         const std::int64_t half = (s - 1) / 2;  // s is odd: nearest coarse vertex, no ties
         const std::int64_t ai = (std::int64_t(v.index.i) + half) / s;
         const std::int64_t aj = (std::int64_t(v.index.j) + half) / s;
         const std::int64_t ak = (std::int64_t(v.index.k) + half) / s;
-        CoarseNeighbourhoods::Range candidates;
-        if (levels_[m].precomputedNeighbourhoods) {
-          candidates = levels_[m].neighbourhoods.near(ai, aj, ak);
+        CoarseNeighbourhoods::Neighbourhood candidates;
+        if (coarse.precomputedNeighbourhoods) {
+          candidates = coarse.neighbourhoods.near(ai, aj, ak);
         } else {
           AncestorCache& cache = ancestorCaches_[m];
           const std::uint64_t ancestorKey = packVertexKey(ai, aj, ak);
           if (cache.ancestorKey != ancestorKey) {
             cache.ancestorKey = ancestorKey;
-            gatherAncestorNeighbourhood(m, ai, aj, ak, cache.candidates);
+            gatherAncestorNeighbourhood(m, ai, aj, ak, cache);
           }
-          candidates = {cache.candidates.data(), cache.candidates.data() + cache.candidates.size()};
+          candidates.particles = {cache.candidates.data(), cache.candidates.data() + cache.candidates.size()};
+          candidates.crowdedVertices = {cache.crowdedVertices.data(),
+                                        cache.crowdedVertices.data() + cache.crowdedVertices.size()};
         }
-        for (const std::int32_t* c = candidates.begin; c != candidates.end; ++c) {
-          const std::int32_t q = *c;
-          const double dx = sx_[q] - vx, dy = sy_[q] - vy, dz = sz_[q] - vz;
-          const double reach = sr_[q] + linkReach;
-          if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
-          ++virtualLinks;
-          const bool qActive = isActive(q);
-          if (!qActive && v.active == 0) continue;
-          for (std::int32_t a = v.begin; a < v.end; ++a)
-            if (qActive || allActive || isActive(a)) onPair(a, q);
-          candidatePairs += std::uint64_t(v.end - v.begin);
+        for (const std::int32_t* c = candidates.particles.begin; c != candidates.particles.end; ++c) link(*c);
+        // Crowded coarse vertices: only particles whose x lies within reach of the vertex can
+        // link (and none when the vertex is beyond reach of the box on any axis).
+        for (const std::int32_t* c = candidates.crowdedVertices.begin; c != candidates.crowdedVertices.end; ++c) {
+          const Vertex& u = coarse.vertices[*c];
+          const Box& box = coarse.boxes[u.box];
+          const double reach = (u.maxSmallRadius + linkReach) * (1.0 + kPruneMargin);
+          if (box.lo[0] - vx <= reach && vx - box.hi[0] <= reach && box.lo[1] - vy <= reach &&
+              vy - box.hi[1] <= reach && box.lo[2] - vz <= reach && vz - box.hi[2] <= reach) {
+            for (std::int32_t q = firstWithinX(u.begin, u.bigBegin, vx, reach); q < u.bigBegin && sx_[q] - vx <= reach;
+                 ++q)
+              link(q);
+          }
+          for (std::int32_t q = u.bigBegin; q < u.end; ++q) link(q);
         }
       }
     }
     stats_.levels[l].virtualLinks = virtualLinks;
   }
   stats_.candidatePairs = candidatePairs;
+}
+
+template <class PairFunction>
+std::uint64_t Spacetree::sweepCrowdedPair(const Level& level, const Vertex& v, const Vertex& nb, double halo,
+                                          double pruneScale, PairFunction& onPair) {
+  const bool bothActive = v.active == v.end - v.begin && nb.active == nb.end - nb.begin;
+  std::uint64_t comparisons = 0;
+  // The ordinary particles: those of v near nb's box, and those of nb near theirs.
+  const double reach = (v.maxSmallRadius + nb.maxSmallRadius + halo) * pruneScale;
+  Box nearV, nearNb;
+  particlesNearBox(v.begin, v.bigBegin, v.sortedByX, smallBox(level, nb), reach, nearA_, nearV);
+  if (!nearA_.empty()) {
+    particlesNearBox(nb.begin, nb.bigBegin, nb.sortedByX, nearV, reach, nearB_, nearNb);
+    if (v.sortedByX && nb.sortedByX) {
+      // Both in x order: a window of nb's per particle of v.
+      std::size_t start = 0;
+      for (const std::int32_t a : nearA_) {
+        const double xa = sx_[a];
+        while (start < nearB_.size() && xa - sx_[nearB_[start]] > reach) ++start;
+        for (std::size_t t = start; t < nearB_.size() && sx_[nearB_[t]] - xa <= reach; ++t) {
+          const std::int32_t b = nearB_[t];
+          if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+          ++comparisons;
+        }
+      }
+    } else {
+      for (const std::int32_t a : nearA_)
+        for (const std::int32_t b : nearB_)
+          if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+      comparisons += std::uint64_t(nearA_.size()) * nearB_.size();
+    }
+  }
+  // The big ones of either vertex against everything of the other, unpruned.
+  for (std::int32_t a = v.begin; a < v.end; ++a)
+    for (std::int32_t b = a < v.bigBegin ? nb.bigBegin : nb.begin; b < nb.end; ++b)
+      if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+  comparisons += std::uint64_t(v.bigBegin - v.begin) * (nb.end - nb.bigBegin) +
+                 std::uint64_t(v.end - v.bigBegin) * (nb.end - nb.begin);
+  return comparisons;
 }
 
 }  // namespace spacetree
