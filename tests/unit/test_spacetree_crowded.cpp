@@ -95,6 +95,29 @@ Scene randomScene(unsigned seed, int coarsestLevel) {
     s.add(x0, y0, z0, kRMax, l);  // coincident centres
     s.add(x0, y0, z0, kRMin, l);
   }
+  // Across levels: crowded level-3 vertices whose biggest particle touches a coarse one at
+  // exactly the cut-off along x (the pruned axis of the link's pairs), and coarse particles
+  // just inside the virtual-link reach of a level-3 or level-4 vertex (the pruned link bound).
+  for (int k = 0; k < 24; ++k) {
+    const int fine = 3 + k % 2;
+    const double h = g.rootSize / std::pow(3.0, fine);
+    const double vx = g.origin[0] + std::floor((0.2 + 0.6 * u(rng) - g.origin[0]) / h) * h;
+    const double vy = g.origin[1] + std::floor((0.2 + 0.6 * u(rng) - g.origin[1]) / h) * h;
+    const double vz = g.origin[2] + std::floor((0.2 + 0.6 * u(rng) - g.origin[2]) / h) * h;
+    const double side = k % 4 < 2 ? 1.0 : -1.0;
+    if (fine == 3) {
+      for (int m = 0; m < 10; ++m)
+        s.add(vx + h * (u(rng) - 0.5) / 3, vy + h * (u(rng) - 0.5) / 3, vz + h * (u(rng) - 0.5) / 3,
+              kRMin * std::pow(0.9 * kRMax / kRMin, u(rng)), fine);
+      const double ax = vx + side * h / 4;
+      s.add(ax, vy, vz, kRMax, fine);
+      s.add(ax + side * (kRMax + kRMax + 2.0 * kEps), vy, vz, kRMax, 1 + k % 4 / 2);
+    } else {
+      s.add(vx, vy, vz, kRMin, fine);
+      const double linkReach = 2.0 * kEps + std::sqrt(3.0) * h;
+      s.add(vx + side * (kRMax + linkReach) * (1.0 - 1e-12), vy, vz, kRMax, 1 + k % 4 / 2);
+    }
+  }
   // Much bigger particles (> 4 x the median) among the small ones of crowded vertices.
   for (int k = 0; k < 8; ++k) s.add(u(rng), u(rng), u(rng), k % 2 ? 0.1 : 0.05, coarsestLevel);
   // Ghosts: a random tenth, listed last.
