@@ -233,6 +233,43 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
   stats_.memoryBytes = bytes;
 }
 
+void Spacetree::sortByXThenId(std::vector<XAndId>& records) {
+  // Ties in x by id: the order the radix sort leaves them in. (x, id) is a total order, so the
+  // result does not depend on the method: a bucket pass along x (the particles of a vertex
+  // spread over its cell) and an insertion sort of the nearly ordered result, or std::sort
+  // where one bucket is crowded (a cluster inside the vertex).
+  auto less = [](const XAndId& a, const XAndId& b) { return a.x < b.x || (a.x == b.x && a.id < b.id); };
+  const std::size_t count = records.size();
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const XAndId& r : records) {
+    lo = std::min(lo, r.x);
+    hi = std::max(hi, r.x);
+  }
+  const double toBucket = hi > lo ? double(count) / (hi - lo) * (1.0 - 1e-12) : 0.0;
+  bucketFirst_.assign(count + 1, 0);
+  for (const XAndId& r : records) ++bucketFirst_[std::min(count - 1, std::size_t((r.x - lo) * toBucket))];
+  std::int32_t sum = 0, largest = 0;
+  for (std::int32_t& f : bucketFirst_) {
+    const std::int32_t c = f;
+    largest = std::max(largest, c);
+    f = sum;
+    sum += c;
+  }
+  if (largest > kLargestBucket) {
+    std::sort(records.begin(), records.end(), less);
+    return;
+  }
+  byXScratch_.resize(count);
+  for (const XAndId& r : records) byXScratch_[std::size_t(bucketFirst_[std::min(count - 1, std::size_t((r.x - lo) * toBucket))]++)] = r;
+  for (std::size_t t = 1; t < count; ++t) {
+    const XAndId r = byXScratch_[t];
+    std::size_t u = t;
+    for (; u > 0 && less(r, byXScratch_[u - 1]); --u) byXScratch_[u] = byXScratch_[u - 1];
+    byXScratch_[u] = r;
+  }
+  records.swap(byXScratch_);
+}
+
 std::int32_t Spacetree::orderCrowdedVertex(std::int32_t begin, std::int32_t end, const double (*x)[3],
                                            const double* radius) {
   // A crowded vertex (a lifted cloud) keeps its particles ordered along x, so the sweep can
@@ -254,9 +291,7 @@ std::int32_t Spacetree::orderCrowdedVertex(std::int32_t begin, std::int32_t end,
     else
       byX_.push_back({x[id][0], id});
   }
-  // Ties in x by id: the order the radix sort left them in, as before.
-  std::sort(byX_.begin(), byX_.end(),
-            [](const XAndId& a, const XAndId& b) { return a.x < b.x || (a.x == b.x && a.id < b.id); });
+  sortByXThenId(byX_);
   std::size_t t = std::size_t(begin);
   for (const XAndId& p : byX_) sortKeys_[t++].index = p.id;
   for (const std::int32_t id : bigIds_) sortKeys_[t++].index = id;

@@ -152,6 +152,11 @@ class Spacetree {
   void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
                                    std::int64_t ak, AncestorCache& out) const;
   bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
+  // Second and third pruned axes of a pair already within reach along x (y, z differences as
+  // the visitor computes them, up to sign).
+  bool withinYZ(std::int32_t a, std::int32_t b, double reach) const {
+    return std::abs(sy_[a] - sy_[b]) <= reach && std::abs(sz_[a] - sz_[b]) <= reach;
+  }
   Box boxOf(std::int32_t begin, std::int32_t end) const;  // of the centres in [begin, end)
   // Box of the vertex's [begin, bigBegin): stored for crowded vertices, computed otherwise.
   Box smallBox(const Level& level, const Vertex& v) const;
@@ -192,7 +197,10 @@ class Spacetree {
     double x;
     std::int32_t id;
   };
-  std::vector<XAndId> byX_;
+  void sortByXThenId(std::vector<XAndId>& records);
+  static constexpr std::int32_t kLargestBucket = 16;  // else std::sort
+  std::vector<XAndId> byX_, byXScratch_;
+  std::vector<std::int32_t> bucketFirst_;
   std::vector<std::int32_t> bigIds_, crowdedBigBegin_;
   std::vector<double> scratchValues_;
   std::vector<std::int32_t> nearA_, nearB_;  // sweepCrowdedPair
@@ -246,6 +254,7 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
         const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
         for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
           for (std::int32_t b = a + 1; b < v.bigBegin && sx_[b] - sx_[a] <= reach; ++b) {
+            if (!withinYZ(a, b, reach)) continue;
             if (allActive || isActive(a) || isActive(b)) onPair(a, b);
             ++candidatePairs;
           }
@@ -377,6 +386,7 @@ std::uint64_t Spacetree::sweepCrowdedPair(const Level& level, const Vertex& v, c
         while (start < nearB_.size() && xa - sx_[nearB_[start]] > reach) ++start;
         for (std::size_t t = start; t < nearB_.size() && sx_[nearB_[t]] - xa <= reach; ++t) {
           const std::int32_t b = nearB_[t];
+          if (!withinYZ(a, b, reach)) continue;
           if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
           ++comparisons;
         }
@@ -389,8 +399,12 @@ std::uint64_t Spacetree::sweepCrowdedPair(const Level& level, const Vertex& v, c
     }
   }
   // The big ones of either vertex against everything of the other, unpruned.
-  for (std::int32_t a = v.begin; a < v.end; ++a)
-    for (std::int32_t b = a < v.bigBegin ? nb.bigBegin : nb.begin; b < nb.end; ++b)
+  if (nb.bigBegin < nb.end)
+    for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
+      for (std::int32_t b = nb.bigBegin; b < nb.end; ++b)
+        if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+  for (std::int32_t a = v.bigBegin; a < v.end; ++a)
+    for (std::int32_t b = nb.begin; b < nb.end; ++b)
       if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
   comparisons += std::uint64_t(v.bigBegin - v.begin) * (nb.end - nb.bigBegin) +
                  std::uint64_t(v.end - v.bigBegin) * (nb.end - nb.begin);
