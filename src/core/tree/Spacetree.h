@@ -152,6 +152,26 @@ class Spacetree {
   void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
                                    std::int64_t ak, AncestorCache& out) const;
   bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
+  // Virtual link: coarse particle q lies within r_q + linkReach of the vertex at (vx, vy, vz).
+  bool linksTo(std::int32_t q, double vx, double vy, double vz, double linkReach) const {
+    const double dx = sx_[q] - vx, dy = sy_[q] - vy, dz = sz_[q] - vz;
+    const double reach = sr_[q] + linkReach;
+    return dx * dx + dy * dy + dz * dz < reach * reach;
+  }
+  // The positions q in [first, last) that link to the vertex, into linkHits_ (branch-free: in
+  // a crowded vertex's window most candidates miss); returns their count.
+  std::int32_t collectLinks(std::int32_t first, std::int32_t last, double vx, double vy, double vz,
+                            double linkReach) {
+    if (linkHits_.size() < std::size_t(last - first)) linkHits_.resize(std::size_t(last - first));
+    std::int32_t* out = linkHits_.data();
+    std::int32_t count = 0;
+    for (std::int32_t q = first; q < last; ++q) {
+      out[count] = q;
+      count += linksTo(q, vx, vy, vz, linkReach) ? 1 : 0;
+    }
+    return count;
+  }
+
   // Second and third pruned axes of a pair already within reach along x (y, z differences as
   // the visitor computes them, up to sign).
   bool withinYZ(std::int32_t a, std::int32_t b, double reach) const {
@@ -204,6 +224,7 @@ class Spacetree {
   std::vector<std::int32_t> bigIds_, crowdedBigBegin_;
   std::vector<double> scratchValues_;
   std::vector<std::int32_t> nearA_, nearB_;  // sweepCrowdedPair
+  std::vector<std::int32_t> linkHits_;       // collectLinks
 
   SpacetreeStatistics stats_;
 };
@@ -305,10 +326,7 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
       const double vz = origin_[2] + v.index.k * h;
       // A link to coarse particle q pairs it with this vertex's particles; on a crowded vertex
       // only with those whose x lies within reach of q's.
-      auto link = [&](std::int32_t q) {
-        const double dx = sx_[q] - vx, dy = sy_[q] - vy, dz = sz_[q] - vz;
-        const double reach = sr_[q] + linkReach;
-        if (dx * dx + dy * dy + dz * dz >= reach * reach) return;
+      auto linked = [&](std::int32_t q) {
         ++virtualLinks;
         const bool qActive = isActive(q);
         if (!qActive && v.active == 0) return;
@@ -323,6 +341,9 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
         for (std::int32_t a = v.bigBegin; a < v.end; ++a)
           if (qActive || allActive || isActive(a)) onPair(a, q);
         candidatePairs += std::uint64_t(smallEnd - smallBegin) + std::uint64_t(v.end - v.bigBegin);
+      };
+      auto link = [&](std::int32_t q) {
+        if (linksTo(q, vx, vy, vz, linkReach)) linked(q);
       };
       for (int m : populatedCoarser_) {
         const Level& coarse = levels_[m];
@@ -354,9 +375,10 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
           const double reach = (u.maxSmallRadius + linkReach) * (1.0 + kPruneMargin);
           if (box.lo[0] - vx <= reach && vx - box.hi[0] <= reach && box.lo[1] - vy <= reach &&
               vy - box.hi[1] <= reach && box.lo[2] - vz <= reach && vz - box.hi[2] <= reach) {
-            for (std::int32_t q = firstWithinX(u.begin, u.bigBegin, vx, reach); q < u.bigBegin && sx_[q] - vx <= reach;
-                 ++q)
-              link(q);
+            const std::int32_t first = firstWithinX(u.begin, u.bigBegin, vx, reach);
+            const std::int32_t count =
+                collectLinks(first, endWithinX(first, u.bigBegin, vx, reach), vx, vy, vz, linkReach);
+            for (std::int32_t t = 0; t < count; ++t) linked(linkHits_[std::size_t(t)]);
           }
           for (std::int32_t q = u.bigBegin; q < u.end; ++q) link(q);
         }
