@@ -191,11 +191,10 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
       v.end = e;
       v.maxRadius = 0.0;
       for (std::int32_t q = v.begin; q < v.end; ++q) v.maxRadius = std::max(v.maxRadius, sr_[q]);
-      v.sortedByX = v.end - v.begin >= kSweepAndPruneMinParticles;
       v.bigBegin = v.end;
       v.maxSmallRadius = v.maxRadius;
       v.box = -1;
-      if (v.sortedByX) {
+      if (v.end - v.begin >= kSweepAndPruneMinParticles) {
         v.bigBegin = crowdedBigBegin_[crowded++];
         v.maxSmallRadius = 0.0;
         for (std::int32_t q = v.begin; q < v.bigBegin; ++q) v.maxSmallRadius = std::max(v.maxSmallRadius, sr_[q]);
@@ -220,7 +219,7 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
     Level& level = levels_[l];
     level.precomputedNeighbourhoods = !level.vertices.empty() && finerVertices > 4 * level.vertices.size();
     if (level.precomputedNeighbourhoods)
-      level.neighbourhoods.build(level.vertices, [](const Vertex& u) { return u.sortedByX; });
+      level.neighbourhoods.build(level.vertices, [](const Vertex& u) { return u.sortedByX(); });
     finerVertices += level.vertices.size();
   }
 
@@ -309,7 +308,7 @@ void Spacetree::gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, st
         const std::int32_t w = level.lookup.find(ai + di, aj + dj, ak + dk);
         if (w == VertexLookup::kAbsent) continue;
         const Vertex& u = level.vertices[w];
-        if (u.sortedByX)
+        if (u.sortedByX())
           out.crowdedVertices.push_back(w);
         else
           for (std::int32_t q = u.begin; q < u.end; ++q) out.candidates.push_back(q);

@@ -95,10 +95,11 @@ class Spacetree {
     std::int32_t begin, end;  // range of hosted particles in the sorted arrays
     std::int32_t active;      // how many of them are active
     double maxRadius;         // of the hosted particles
-    bool sortedByX;           // crowded: [begin, bigBegin) is ordered by x (sweep and prune)
     std::int32_t bigBegin;    // crowded: [bigBegin, end) holds the much bigger ones, unsorted
-    double maxSmallRadius;    // of [begin, bigBegin)
     std::int32_t box;         // crowded: its entry in Level::boxes, else -1
+    double maxSmallRadius;    // of [begin, bigBegin)
+    // Crowded: [begin, bigBegin) is ordered by x (sweep and prune).
+    bool sortedByX() const { return box >= 0; }
   };
   // Bounding box of particle centres.
   struct Box {
@@ -271,7 +272,7 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
     for (const Vertex& v : level.vertices) {
       // 1. Real particles of this vertex among themselves.
       const bool allActive = v.active == v.end - v.begin;  // no ghost: skip per-pair checks
-      if (v.sortedByX) {
+      if (v.sortedByX()) {
         const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
         for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
           for (std::int32_t b = a + 1; b < v.bigBegin && sx_[b] - sx_[a] <= reach; ++b) {
@@ -303,7 +304,7 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
         if (w == VertexLookup::kAbsent) continue;
         const Vertex& nb = level.vertices[w];
         if (v.active == 0 && nb.active == 0) continue;
-        if (v.sortedByX || nb.sortedByX) {
+        if (v.sortedByX() || nb.sortedByX()) {
           candidatePairs += sweepCrowdedPair(level, v, nb, halo, pruneScale, onPair);
           continue;
         }
@@ -331,7 +332,7 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
         const bool qActive = isActive(q);
         if (!qActive && v.active == 0) return;
         std::int32_t smallBegin = v.begin, smallEnd = v.bigBegin;  // the whole vertex if plain
-        if (v.sortedByX) {
+        if (v.sortedByX()) {
           const double pairReach = (sr_[q] + v.maxSmallRadius + halo) * pruneScale;
           smallBegin = firstWithinX(v.begin, v.bigBegin, sx_[q], pairReach);
           smallEnd = endWithinX(smallBegin, v.bigBegin, sx_[q], pairReach);
@@ -397,10 +398,10 @@ std::uint64_t Spacetree::sweepCrowdedPair(const Level& level, const Vertex& v, c
   // The ordinary particles: those of v near nb's box, and those of nb near theirs.
   const double reach = (v.maxSmallRadius + nb.maxSmallRadius + halo) * pruneScale;
   Box nearV, nearNb;
-  particlesNearBox(v.begin, v.bigBegin, v.sortedByX, smallBox(level, nb), reach, nearA_, nearV);
+  particlesNearBox(v.begin, v.bigBegin, v.sortedByX(), smallBox(level, nb), reach, nearA_, nearV);
   if (!nearA_.empty()) {
-    particlesNearBox(nb.begin, nb.bigBegin, nb.sortedByX, nearV, reach, nearB_, nearNb);
-    if (v.sortedByX && nb.sortedByX) {
+    particlesNearBox(nb.begin, nb.bigBegin, nb.sortedByX(), nearV, reach, nearB_, nearNb);
+    if (v.sortedByX() && nb.sortedByX()) {
       // Both in x order: a window of nb's per particle of v.
       std::size_t start = 0;
       for (const std::int32_t a : nearA_) {
