@@ -278,9 +278,19 @@ std::int32_t Spacetree::orderCrowdedVertex(std::int32_t begin, std::int32_t end,
   // payloads: the particle arrays are then filled once, already in this order.
   const std::size_t count = std::size_t(end - begin);
   scratchValues_.resize(count);
-  for (std::size_t t = 0; t < count; ++t) scratchValues_[t] = radius[sortKeys_[std::size_t(begin) + t].index];
-  std::nth_element(scratchValues_.begin(), scratchValues_.begin() + count / 2, scratchValues_.end());
-  const double bigRadius = kBigRadiusOverMedian * scratchValues_[count / 2];
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+  for (std::size_t t = 0; t < count; ++t) {
+    const double r = radius[sortKeys_[std::size_t(begin) + t].index];
+    scratchValues_[t] = r;
+    smallest = std::min(smallest, r);
+    largest = std::max(largest, r);
+  }
+  // No particle exceeds 4 x the median when none exceeds 4 x the smallest: skip the median.
+  double bigRadius = kBigRadiusOverMedian * smallest;
+  if (largest > bigRadius) {
+    std::nth_element(scratchValues_.begin(), scratchValues_.begin() + count / 2, scratchValues_.end());
+    bigRadius = kBigRadiusOverMedian * scratchValues_[count / 2];
+  }
   byX_.clear();
   bigIds_.clear();
   for (std::size_t t = 0; t < count; ++t) {
