@@ -149,15 +149,6 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
     sortKeys_[i] = KeyedIndex{levelVertexKey(l, packVertexKey(vi, vj, vk)), i};
   }
   radixSortByKey(sortKeys_, sortScratch_);
-  // Crowded vertices: their particles in x order (the much bigger ones last), before the copy.
-  crowdedBigBegin_.clear();
-  for (int s = 0; s < n;) {
-    int e = s + 1;
-    while (e < n && sortKeys_[e].key == sortKeys_[s].key) ++e;
-    if (e - s >= kSweepAndPruneMinParticles) crowdedBigBegin_.push_back(orderCrowdedVertex(s, e, x, radius));
-    s = e;
-  }
-
   sx_.resize(std::size_t(n));
   sy_.resize(std::size_t(n));
   sz_.resize(std::size_t(n));
@@ -173,7 +164,6 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
   }
 
   // Vertices per level, and their look-up tables.
-  std::size_t crowded = 0;
   for (int s = 0; s < n;) {
     const int l = int(sortKeys_[s].key >> kLevelShift);
     Level& level = levels_[l];
@@ -195,7 +185,7 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
       v.maxSmallRadius = v.maxRadius;
       v.box = -1;
       if (v.end - v.begin >= kSweepAndPruneMinParticles) {
-        v.bigBegin = crowdedBigBegin_[crowded++];
+        v.bigBegin = orderCrowdedVertex(v.begin, v.end, x, radius);
         v.maxSmallRadius = 0.0;
         for (std::int32_t q = v.begin; q < v.bigBegin; ++q) v.maxSmallRadius = std::max(v.maxSmallRadius, sr_[q]);
         v.box = std::int32_t(level.boxes.size());
@@ -274,13 +264,13 @@ std::int32_t Spacetree::orderCrowdedVertex(std::int32_t begin, std::int32_t end,
   // A crowded vertex (a lifted cloud) keeps its particles ordered along x, so the sweep can
   // prune its pairs by their x distance instead of testing all of them. Particles much bigger
   // than the vertex's median go last, in their order: they would widen every pruning window.
-  // Sorting (x, id) records directly, not indices through the arrays, and only the sort keys'
-  // payloads: the particle arrays are then filled once, already in this order.
+  // Sorting (x, id) records directly, not indices through the arrays, then refilling this
+  // vertex's slice of the particle arrays from the caller's arrays.
   const std::size_t count = std::size_t(end - begin);
   scratchValues_.resize(count);
   double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
   for (std::size_t t = 0; t < count; ++t) {
-    const double r = radius[sortKeys_[std::size_t(begin) + t].index];
+    const double r = sr_[std::size_t(begin) + t];
     scratchValues_[t] = r;
     smallest = std::min(smallest, r);
     largest = std::max(largest, r);
@@ -294,7 +284,7 @@ std::int32_t Spacetree::orderCrowdedVertex(std::int32_t begin, std::int32_t end,
   byX_.clear();
   bigIds_.clear();
   for (std::size_t t = 0; t < count; ++t) {
-    const std::int32_t id = sortKeys_[std::size_t(begin) + t].index;
+    const std::int32_t id = sortedId_[std::size_t(begin) + t];
     if (radius[id] > bigRadius)
       bigIds_.push_back(id);
     else
@@ -302,8 +292,16 @@ std::int32_t Spacetree::orderCrowdedVertex(std::int32_t begin, std::int32_t end,
   }
   sortByXThenId(byX_);
   std::size_t t = std::size_t(begin);
-  for (const XAndId& p : byX_) sortKeys_[t++].index = p.id;
-  for (const std::int32_t id : bigIds_) sortKeys_[t++].index = id;
+  auto place = [&](std::int32_t id) {
+    sx_[t] = x[id][0];
+    sy_[t] = x[id][1];
+    sz_[t] = x[id][2];
+    sr_[t] = radius[id];
+    sortedId_[t] = id;
+    ++t;
+  };
+  for (const XAndId& p : byX_) place(p.id);
+  for (const std::int32_t id : bigIds_) place(id);
   return begin + std::int32_t(byX_.size());
 }
 

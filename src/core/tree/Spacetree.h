@@ -9,6 +9,15 @@
 // Levels are sparse: only vertices that host particles exist, so the memory is per particle,
 // not per domain volume. The tree is rebuilt from scratch by build(); drop (to the finest
 // admissible level) and lift (to a coarser one when a particle grows) happen there.
+//
+// Crowded vertices (>= 8 particles: a lifted cloud on a coarse level of the reluctant grid)
+// keep their particles ordered by x with a bounding box, and are pruned instead of paired in
+// full: within a vertex by an x window then |dy|, |dz|; between two vertices only the
+// particles within reach of the other's box (a slab along the shared face, edge or corner)
+// take part; a finer vertex scans only the x window of a crowded coarse vertex for virtual
+// links (and nothing when it is beyond reach of the box). Bounds are the vertices' largest
+// radii with a 1e-9 margin, tested on coordinate differences as the visitor's distance is, so
+// the pairs, their distances and the virtual links are those of the unpruned sweep.
 #pragma once
 
 #include <algorithm>
@@ -105,9 +114,8 @@ class Spacetree {
   struct Box {
     double lo[3], hi[3];
   };
-  // Vertices holding at least this many particles are ordered by x, and pairs of two such
-  // vertices (or within one) are pruned by their x distance before the exact test. Regular
-  // levels rarely reach it; coarse levels holding a lifted cloud (reluctant grid) do.
+  // Vertices holding at least this many particles are crowded (see the top of this file).
+  // Regular levels rarely reach it; coarse levels holding a lifted cloud (reluctant grid) do.
   static constexpr std::int32_t kSweepAndPruneMinParticles = 8;
   static constexpr double kBigRadiusOverMedian = 4.0;
   struct Level {
@@ -148,7 +156,7 @@ class Spacetree {
   void clear(int n, int nActive);  // forget the last build
   void resetLevels(const std::array<double, 3>& origin, double rootSize, int depth);
   void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
-  // Orders the sort keys [begin, end) of one crowded vertex; returns its bigBegin.
+  // Orders the particles [begin, end) of one crowded vertex; returns its bigBegin.
   std::int32_t orderCrowdedVertex(std::int32_t begin, std::int32_t end, const double (*x)[3], const double* radius);
   void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
                                    std::int64_t ak, AncestorCache& out) const;
@@ -222,7 +230,7 @@ class Spacetree {
   static constexpr std::int32_t kLargestBucket = 16;  // else std::sort
   std::vector<XAndId> byX_, byXScratch_;
   std::vector<std::int32_t> bucketFirst_;
-  std::vector<std::int32_t> bigIds_, crowdedBigBegin_;
+  std::vector<std::int32_t> bigIds_;
   std::vector<double> scratchValues_;
   std::vector<std::int32_t> nearA_, nearB_;  // sweepCrowdedPair
   std::vector<std::int32_t> linkHits_;       // collectLinks
