@@ -83,6 +83,25 @@ Scene randomScene(unsigned seed, int coarsestLevel) {
     s.add(p[0], p[1], p[2], kRMax, l);
     s.add(q[0], q[1], q[2], kRMax, l);
   }
+  // Two crowded neighbours (10 particles each side of a vertex-cell boundary) with a pair at
+  // the cut-off across it, on level 1 (reach small against h: slabs) and level 2 (not).
+  for (int k = 0; k < 12; ++k) {
+    const int l = 1 + k % 2;
+    const double h = g.rootSize / std::pow(3.0, l);
+    const double cut = kRMax + kRMax + 2.0 * kEps;
+    const int axis = k / 2 % 3;
+    double p[3] = {0.2 + 0.6 * u(rng), 0.2 + 0.6 * u(rng), 0.2 + 0.6 * u(rng)};
+    p[axis] = g.origin[axis] + (std::floor((p[axis] - g.origin[axis]) / h) + 0.5) * h - 0.5 * cut;
+    for (int m = 0; m < 20; ++m) {
+      double q[3] = {p[0] + 0.3 * h * (u(rng) - 0.5), p[1] + 0.3 * h * (u(rng) - 0.5), p[2] + 0.3 * h * (u(rng) - 0.5)};
+      q[axis] = p[axis] + 0.5 * cut + (m % 2 ? 1.0 : -1.0) * (0.05 + 0.3 * u(rng)) * h;
+      s.add(q[0], q[1], q[2], kRMin * std::pow(0.9 * kRMax / kRMin, u(rng)), l);
+    }
+    double q[3] = {p[0], p[1], p[2]};
+    q[axis] += cut;
+    s.add(p[0], p[1], p[2], kRMax, l);
+    s.add(q[0], q[1], q[2], kRMax, l);
+  }
   // Groups on one x coordinate (ties in the x order, zero-width windows), some touching along y.
   for (int grp = 0; grp < 4; ++grp) {
     const double x0 = 0.1 + 0.8 * u(rng), y0 = 0.1 + 0.8 * u(rng), z0 = 0.1 + 0.8 * u(rng);

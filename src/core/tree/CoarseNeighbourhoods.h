@@ -33,6 +33,8 @@ class CoarseNeighbourhoods {
     slotOf_.reset(27 * vertices.size());
     first_.clear();
     firstCrowded_.clear();
+    anyCrowded_ = false;
+    for (const auto& u : vertices) anyCrowded_ = anyCrowded_ || crowded(u);
     for (int pass = 0; pass < 2; ++pass) {
       for (std::size_t s = 0; s < vertices.size(); ++s) {
         const auto& u = vertices[s];
@@ -49,7 +51,7 @@ class CoarseNeighbourhoods {
                   slot = std::int32_t(first_.size());
                   slotOf_.insert(key, slot);
                   first_.push_back(0);
-                  firstCrowded_.push_back(0);
+                  if (anyCrowded_) firstCrowded_.push_back(0);
                 }
                 if (isCrowded)
                   ++firstCrowded_[slot];
@@ -64,7 +66,7 @@ class CoarseNeighbourhoods {
       }
       if (pass == 0) {  // counts -> offsets
         countsToOffsets(first_, fill_, particles_);
-        countsToOffsets(firstCrowded_, fillCrowded_, crowded_);
+        if (anyCrowded_) countsToOffsets(firstCrowded_, fillCrowded_, crowded_);
       }
     }
   }
@@ -76,6 +78,8 @@ class CoarseNeighbourhoods {
   Neighbourhood near(std::int64_t i, std::int64_t j, std::int64_t k) const {
     const std::int32_t slot = slotOf_.find(packVertexKey(i, j, k));
     if (slot == VertexHashMap::kAbsent) return Neighbourhood{{nullptr, nullptr}, {nullptr, nullptr}};
+    if (!anyCrowded_)  // the common case off the reluctant grid: no second look-up
+      return Neighbourhood{{particles_.data() + first_[slot], particles_.data() + first_[slot + 1]}, {nullptr, nullptr}};
     return Neighbourhood{{particles_.data() + first_[slot], particles_.data() + first_[slot + 1]},
                          {crowded_.data() + firstCrowded_[slot], crowded_.data() + firstCrowded_[slot + 1]}};
   }
@@ -100,6 +104,7 @@ class CoarseNeighbourhoods {
     fill.assign(first.begin(), first.end() - 1);
   }
 
+  bool anyCrowded_ = false;
   VertexHashMap slotOf_;
   std::vector<std::int32_t> first_, fill_, particles_;
   std::vector<std::int32_t> firstCrowded_, fillCrowded_, crowded_;

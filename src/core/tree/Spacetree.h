@@ -143,10 +143,12 @@ class Spacetree {
   void sweep(PairFunction&& onPair, double pruneScale);
   // Pairs of two vertex-connected vertices of one level, at least one of them crowded: only
   // particles within reach of the other vertex's bounding box take part (a slab along the
-  // shared face, edge or corner), then a sweep along x. Returns the comparisons made.
+  // shared face, edge or corner), then a sweep along x; without the slabs when the pair reach
+  // is not small against the mesh size (dense crowded vertices: they would keep everything).
+  // Returns the comparisons made. Out of line, so that the plain path of the sweep stays small.
   template <class PairFunction>
-  std::uint64_t sweepCrowdedPair(const Level& level, const Vertex& v, const Vertex& nb, double halo,
-                                 double pruneScale, PairFunction& onPair);
+  [[gnu::noinline]] std::uint64_t sweepCrowdedPair(const Level& level, const Vertex& v, const Vertex& nb,
+                                                   double halo, double pruneScale, PairFunction& onPair);
   // Relative margin of that bound over the cut-off (round-off of the x difference).
   static constexpr double kPruneMargin = 1e-9;
   int hostLevel(double required) const;
@@ -405,28 +407,49 @@ std::uint64_t Spacetree::sweepCrowdedPair(const Level& level, const Vertex& v, c
   std::uint64_t comparisons = 0;
   // The ordinary particles: those of v near nb's box, and those of nb near theirs.
   const double reach = (v.maxSmallRadius + nb.maxSmallRadius + halo) * pruneScale;
-  Box nearV, nearNb;
-  particlesNearBox(v.begin, v.bigBegin, v.sortedByX(), smallBox(level, nb), reach, nearA_, nearV);
-  if (!nearA_.empty()) {
-    particlesNearBox(nb.begin, nb.bigBegin, nb.sortedByX(), nearV, reach, nearB_, nearNb);
+  if (4.0 * reach >= level.meshSize) {
     if (v.sortedByX() && nb.sortedByX()) {
       // Both in x order: a window of nb's per particle of v.
-      std::size_t start = 0;
-      for (const std::int32_t a : nearA_) {
+      std::int32_t start = nb.begin;
+      for (std::int32_t a = v.begin; a < v.bigBegin; ++a) {
         const double xa = sx_[a];
-        while (start < nearB_.size() && xa - sx_[nearB_[start]] > reach) ++start;
-        for (std::size_t t = start; t < nearB_.size() && sx_[nearB_[t]] - xa <= reach; ++t) {
-          const std::int32_t b = nearB_[t];
+        while (start < nb.bigBegin && xa - sx_[start] > reach) ++start;
+        for (std::int32_t b = start; b < nb.bigBegin && sx_[b] - xa <= reach; ++b) {
           if (!withinYZ(a, b, reach)) continue;
           if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
           ++comparisons;
         }
       }
     } else {
-      for (const std::int32_t a : nearA_)
-        for (const std::int32_t b : nearB_)
+      for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
+        for (std::int32_t b = nb.begin; b < nb.bigBegin; ++b)
           if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
-      comparisons += std::uint64_t(nearA_.size()) * nearB_.size();
+      comparisons += std::uint64_t(v.bigBegin - v.begin) * (nb.bigBegin - nb.begin);
+    }
+  } else {
+    Box nearV, nearNb;
+    particlesNearBox(v.begin, v.bigBegin, v.sortedByX(), smallBox(level, nb), reach, nearA_, nearV);
+    if (!nearA_.empty()) {
+      particlesNearBox(nb.begin, nb.bigBegin, nb.sortedByX(), nearV, reach, nearB_, nearNb);
+      if (v.sortedByX() && nb.sortedByX()) {
+        // Both in x order: a window of nb's per particle of v.
+        std::size_t start = 0;
+        for (const std::int32_t a : nearA_) {
+          const double xa = sx_[a];
+          while (start < nearB_.size() && xa - sx_[nearB_[start]] > reach) ++start;
+          for (std::size_t t = start; t < nearB_.size() && sx_[nearB_[t]] - xa <= reach; ++t) {
+            const std::int32_t b = nearB_[t];
+            if (!withinYZ(a, b, reach)) continue;
+            if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+            ++comparisons;
+          }
+        }
+      } else {
+        for (const std::int32_t a : nearA_)
+          for (const std::int32_t b : nearB_)
+            if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+        comparisons += std::uint64_t(nearA_.size()) * nearB_.size();
+      }
     }
   }
   // The big ones of either vertex against everything of the other, unpruned.
