@@ -141,6 +141,10 @@ class Spacetree {
   // (r_max + r_max' + 2 eps) pruneScale, a bound at or above the visitor's cut-off.
   template <class PairFunction>
   void sweep(PairFunction&& onPair, double pruneScale);
+  // One level of the sweep; returns its virtual links. kCrowded: the level or a coarser one
+  // holds crowded vertices (else their branches are compiled out).
+  template <bool kCrowded, class PairFunction>
+  std::uint64_t sweepLevel(int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons);
   // Pairs of two vertex-connected vertices of one level, at least one of them crowded: only
   // particles within reach of the other vertex's bounding box take part (a slab along the
   // shared face, edge or corner), then a sweep along x; without the slabs when the pair reach
@@ -252,8 +256,6 @@ inline constexpr std::array<std::array<int, 3>, 13> kForwardNeighbourOffsets{{
 template <class PairFunction>
 void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
   std::uint64_t candidatePairs = 0;
-  const double halo = 2.0 * options_.epsilon;
-  const double sqrt3 = std::sqrt(3.0);
   const int nLevels = int(levels_.size());
   for (auto& level : stats_.levels) level.virtualLinks = 0;
   ancestorCaches_.resize(nLevels);
@@ -262,122 +264,140 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
   for (int l = 0; l < nLevels; ++l) {
     const Level& level = levels_[l];
     if (level.vertices.empty()) continue;
-    const double h = level.meshSize;
-
     populatedCoarser_.clear();
+    bool crowded = !level.boxes.empty();
     for (int m = 0; m < l; ++m) {
-      if (!levels_[m].vertices.empty()) populatedCoarser_.push_back(m);
+      if (levels_[m].vertices.empty()) continue;
+      populatedCoarser_.push_back(m);
+      crowded = crowded || !levels_[m].boxes.empty();
     }
-    // Virtual-link radius beyond the coarse particle's own radius (paper: r + 2 eps + h sqrt(d)).
-    const double linkReach = 2.0 * options_.epsilon + sqrt3 * h;
-    std::uint64_t virtualLinks = 0;
-    const bool dense = level.lookup.dense();
-    std::array<std::int64_t, kForwardNeighbourOffsets.size()> denseOffsets{};
-    if (dense)
-      for (std::size_t n = 0; n < denseOffsets.size(); ++n)
-        denseOffsets[n] = level.lookup.denseOffset(kForwardNeighbourOffsets[n][0],
-                                                   kForwardNeighbourOffsets[n][1],
-                                                   kForwardNeighbourOffsets[n][2]);
+    // A level without crowded vertices, below none, runs the plain loop (its own code).
+    stats_.levels[l].virtualLinks = crowded ? sweepLevel<true>(l, onPair, pruneScale, candidatePairs)
+                                            : sweepLevel<false>(l, onPair, pruneScale, candidatePairs);
+  }
+  stats_.candidatePairs = candidatePairs;
+}
 
-    for (const Vertex& v : level.vertices) {
-      // 1. Real particles of this vertex among themselves.
-      const bool allActive = v.active == v.end - v.begin;  // no ghost: skip per-pair checks
-      if (v.sortedByX()) {
-        const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
-        for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
-          for (std::int32_t b = a + 1; b < v.bigBegin && sx_[b] - sx_[a] <= reach; ++b) {
-            if (!withinYZ(a, b, reach)) continue;
-            if (allActive || isActive(a) || isActive(b)) onPair(a, b);
-            ++candidatePairs;
-          }
-        for (std::int32_t b = v.bigBegin; b < v.end; ++b)  // the big ones against all before them
-          for (std::int32_t a = v.begin; a < b; ++a)
-            if (allActive || isActive(a) || isActive(b)) onPair(a, b);
-        candidatePairs += std::uint64_t(v.end - v.bigBegin) * (v.end - v.bigBegin - 1) / 2 +
-                          std::uint64_t(v.end - v.bigBegin) * (v.bigBegin - v.begin);
-      } else {
-        for (std::int32_t a = v.begin; a < v.end; ++a)
-          for (std::int32_t b = a + 1; b < v.end; ++b)
-            if (allActive || isActive(a) || isActive(b)) onPair(a, b);
-        candidatePairs += std::uint64_t(v.end - v.begin) * (v.end - v.begin - 1) / 2;
-      }
+template <bool kCrowded, class PairFunction>
+std::uint64_t Spacetree::sweepLevel(int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons) {
+  std::uint64_t candidatePairs = 0;  // local: kept in a register
+  const double halo = 2.0 * options_.epsilon;
+  const double sqrt3 = std::sqrt(3.0);
+  const Level& level = levels_[l];
+  const double h = level.meshSize;
+  // Virtual-link radius beyond the coarse particle's own radius (paper: r + 2 eps + h sqrt(d)).
+  const double linkReach = 2.0 * options_.epsilon + sqrt3 * h;
+  std::uint64_t virtualLinks = 0;
+  const bool dense = level.lookup.dense();
+  std::array<std::int64_t, kForwardNeighbourOffsets.size()> denseOffsets{};
+  if (dense)
+    for (std::size_t n = 0; n < denseOffsets.size(); ++n)
+      denseOffsets[n] = level.lookup.denseOffset(kForwardNeighbourOffsets[n][0],
+                                                 kForwardNeighbourOffsets[n][1],
+                                                 kForwardNeighbourOffsets[n][2]);
 
-      // 2. Against the real particles of the forward vertex-connected neighbours.
-      const std::int64_t position =
-          dense ? level.lookup.densePosition(v.index.i, v.index.j, v.index.k) : 0;
-      for (int n = 0; n < int(kForwardNeighbourOffsets.size()); ++n) {
-        const auto& o = kForwardNeighbourOffsets[n];
-        const std::int32_t w =
-            dense ? level.lookup.atDensePosition(position + denseOffsets[n])
-                  : level.lookup.find(std::int64_t(v.index.i) + o[0], std::int64_t(v.index.j) + o[1],
-                                      std::int64_t(v.index.k) + o[2]);
-        if (w == VertexLookup::kAbsent) continue;
-        const Vertex& nb = level.vertices[w];
-        if (v.active == 0 && nb.active == 0) continue;
+  for (const Vertex& v : level.vertices) {
+    // 1. Real particles of this vertex among themselves.
+    const bool allActive = v.active == v.end - v.begin;  // no ghost: skip per-pair checks
+    if (kCrowded && v.sortedByX()) {
+      const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
+      for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
+        for (std::int32_t b = a + 1; b < v.bigBegin && sx_[b] - sx_[a] <= reach; ++b) {
+          if (!withinYZ(a, b, reach)) continue;
+          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+          ++candidatePairs;
+        }
+      for (std::int32_t b = v.bigBegin; b < v.end; ++b)  // the big ones against all before them
+        for (std::int32_t a = v.begin; a < b; ++a)
+          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+      candidatePairs += std::uint64_t(v.end - v.bigBegin) * (v.end - v.bigBegin - 1) / 2 +
+                        std::uint64_t(v.end - v.bigBegin) * (v.bigBegin - v.begin);
+    } else {
+      for (std::int32_t a = v.begin; a < v.end; ++a)
+        for (std::int32_t b = a + 1; b < v.end; ++b)
+          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+      candidatePairs += std::uint64_t(v.end - v.begin) * (v.end - v.begin - 1) / 2;
+    }
+
+    // 2. Against the real particles of the forward vertex-connected neighbours.
+    const std::int64_t position =
+        dense ? level.lookup.densePosition(v.index.i, v.index.j, v.index.k) : 0;
+    for (int n = 0; n < int(kForwardNeighbourOffsets.size()); ++n) {
+      const auto& o = kForwardNeighbourOffsets[n];
+      const std::int32_t w =
+          dense ? level.lookup.atDensePosition(position + denseOffsets[n])
+                : level.lookup.find(std::int64_t(v.index.i) + o[0], std::int64_t(v.index.j) + o[1],
+                                    std::int64_t(v.index.k) + o[2]);
+      if (w == VertexLookup::kAbsent) continue;
+      const Vertex& nb = level.vertices[w];
+      if (v.active == 0 && nb.active == 0) continue;
+      if constexpr (kCrowded) {
         if (v.sortedByX() || nb.sortedByX()) {
           candidatePairs += sweepCrowdedPair(level, v, nb, halo, pruneScale, onPair);
           continue;
         }
-        if (allActive || nb.active == nb.end - nb.begin) {
-          for (std::int32_t a = v.begin; a < v.end; ++a)
-            for (std::int32_t b = nb.begin; b < nb.end; ++b) onPair(a, b);
-        } else {
-          for (std::int32_t a = v.begin; a < v.end; ++a)
-            for (std::int32_t b = nb.begin; b < nb.end; ++b)
-              if (isActive(a) || isActive(b)) onPair(a, b);
-        }
-        candidatePairs += std::uint64_t(v.end - v.begin) * (nb.end - nb.begin);
       }
+      if (allActive || nb.active == nb.end - nb.begin) {
+        for (std::int32_t a = v.begin; a < v.end; ++a)
+          for (std::int32_t b = nb.begin; b < nb.end; ++b) onPair(a, b);
+      } else {
+        for (std::int32_t a = v.begin; a < v.end; ++a)
+          for (std::int32_t b = nb.begin; b < nb.end; ++b)
+            if (isActive(a) || isActive(b)) onPair(a, b);
+      }
+      candidatePairs += std::uint64_t(v.end - v.begin) * (nb.end - nb.begin);
+    }
 
-      // 3. Against virtual links: real particles of coarser levels near this vertex. They are
-      //    found through the nearest vertex (ancestor) on each coarser populated level, whose
-      //    3x3x3 neighbourhood holds every coarse particle that can reach this vertex.
-      const double vx = origin_[0] + v.index.i * h;
-      const double vy = origin_[1] + v.index.j * h;
-      const double vz = origin_[2] + v.index.k * h;
-      // A link to coarse particle q pairs it with this vertex's particles; on a crowded vertex
-      // only with those whose x lies within reach of q's.
-      auto linked = [&](std::int32_t q) {
-        ++virtualLinks;
-        const bool qActive = isActive(q);
-        if (!qActive && v.active == 0) return;
-        std::int32_t smallBegin = v.begin, smallEnd = v.bigBegin;  // the whole vertex if plain
-        if (v.sortedByX()) {
-          const double pairReach = (sr_[q] + v.maxSmallRadius + halo) * pruneScale;
-          smallBegin = firstWithinX(v.begin, v.bigBegin, sx_[q], pairReach);
-          smallEnd = endWithinX(smallBegin, v.bigBegin, sx_[q], pairReach);
+    // 3. Against virtual links: real particles of coarser levels near this vertex. They are
+    //    found through the nearest vertex (ancestor) on each coarser populated level, whose
+    //    3x3x3 neighbourhood holds every coarse particle that can reach this vertex.
+    const double vx = origin_[0] + v.index.i * h;
+    const double vy = origin_[1] + v.index.j * h;
+    const double vz = origin_[2] + v.index.k * h;
+    // A link to coarse particle q pairs it with this vertex's particles; on a crowded vertex
+    // only with those whose x lies within reach of q's.
+    auto linked = [&](std::int32_t q) {
+      ++virtualLinks;
+      const bool qActive = isActive(q);
+      if (!qActive && v.active == 0) return;
+      std::int32_t smallBegin = v.begin, smallEnd = v.bigBegin;  // the whole vertex if plain
+      if (kCrowded && v.sortedByX()) {
+        const double pairReach = (sr_[q] + v.maxSmallRadius + halo) * pruneScale;
+        smallBegin = firstWithinX(v.begin, v.bigBegin, sx_[q], pairReach);
+        smallEnd = endWithinX(smallBegin, v.bigBegin, sx_[q], pairReach);
+      }
+      for (std::int32_t a = smallBegin; a < smallEnd; ++a)
+        if (qActive || allActive || isActive(a)) onPair(a, q);
+      for (std::int32_t a = v.bigBegin; a < v.end; ++a)
+        if (qActive || allActive || isActive(a)) onPair(a, q);
+      candidatePairs += std::uint64_t(smallEnd - smallBegin) + std::uint64_t(v.end - v.bigBegin);
+    };
+    auto link = [&](std::int32_t q) {
+      if (linksTo(q, vx, vy, vz, linkReach)) linked(q);
+    };
+    for (int m : populatedCoarser_) {
+      const Level& coarse = levels_[m];
+      const std::int64_t s = kPowersOfThree[l - m];
+      const std::int64_t half = (s - 1) / 2;  // s is odd: nearest coarse vertex, no ties
+      const std::int64_t ai = (std::int64_t(v.index.i) + half) / s;
+      const std::int64_t aj = (std::int64_t(v.index.j) + half) / s;
+      const std::int64_t ak = (std::int64_t(v.index.k) + half) / s;
+      CoarseNeighbourhoods::Neighbourhood candidates;
+      if (coarse.precomputedNeighbourhoods) {
+        candidates = coarse.neighbourhoods.near(ai, aj, ak);
+      } else {
+        AncestorCache& cache = ancestorCaches_[m];
+        const std::uint64_t ancestorKey = packVertexKey(ai, aj, ak);
+        if (cache.ancestorKey != ancestorKey) {
+          cache.ancestorKey = ancestorKey;
+          gatherAncestorNeighbourhood(m, ai, aj, ak, cache);
         }
-        for (std::int32_t a = smallBegin; a < smallEnd; ++a)
-          if (qActive || allActive || isActive(a)) onPair(a, q);
-        for (std::int32_t a = v.bigBegin; a < v.end; ++a)
-          if (qActive || allActive || isActive(a)) onPair(a, q);
-        candidatePairs += std::uint64_t(smallEnd - smallBegin) + std::uint64_t(v.end - v.bigBegin);
-      };
-      auto link = [&](std::int32_t q) {
-        if (linksTo(q, vx, vy, vz, linkReach)) linked(q);
-      };
-      for (int m : populatedCoarser_) {
-        const Level& coarse = levels_[m];
-        const std::int64_t s = kPowersOfThree[l - m];
-        const std::int64_t half = (s - 1) / 2;  // s is odd: nearest coarse vertex, no ties
-        const std::int64_t ai = (std::int64_t(v.index.i) + half) / s;
-        const std::int64_t aj = (std::int64_t(v.index.j) + half) / s;
-        const std::int64_t ak = (std::int64_t(v.index.k) + half) / s;
-        CoarseNeighbourhoods::Neighbourhood candidates;
-        if (coarse.precomputedNeighbourhoods) {
-          candidates = coarse.neighbourhoods.near(ai, aj, ak);
-        } else {
-          AncestorCache& cache = ancestorCaches_[m];
-          const std::uint64_t ancestorKey = packVertexKey(ai, aj, ak);
-          if (cache.ancestorKey != ancestorKey) {
-            cache.ancestorKey = ancestorKey;
-            gatherAncestorNeighbourhood(m, ai, aj, ak, cache);
-          }
-          candidates.particles = {cache.candidates.data(), cache.candidates.data() + cache.candidates.size()};
-          candidates.crowdedVertices = {cache.crowdedVertices.data(),
-                                        cache.crowdedVertices.data() + cache.crowdedVertices.size()};
-        }
-        for (const std::int32_t* c = candidates.particles.begin; c != candidates.particles.end; ++c) link(*c);
+        candidates.particles = {cache.candidates.data(), cache.candidates.data() + cache.candidates.size()};
+        candidates.crowdedVertices = {cache.crowdedVertices.data(),
+                                      cache.crowdedVertices.data() + cache.crowdedVertices.size()};
+      }
+      for (const std::int32_t* c = candidates.particles.begin; c != candidates.particles.end; ++c) link(*c);
+      if constexpr (kCrowded) {
         // Crowded coarse vertices: only particles whose x lies within reach of the vertex can
         // link (and none when the vertex is beyond reach of the box on any axis).
         for (const std::int32_t* c = candidates.crowdedVertices.begin; c != candidates.crowdedVertices.end; ++c) {
@@ -395,9 +415,9 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
         }
       }
     }
-    stats_.levels[l].virtualLinks = virtualLinks;
   }
-  stats_.candidatePairs = candidatePairs;
+  comparisons += candidatePairs;
+  return virtualLinks;
 }
 
 template <class PairFunction>
