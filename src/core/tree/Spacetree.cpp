@@ -4,7 +4,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 
 namespace spacetree {
 
@@ -83,6 +82,7 @@ void Spacetree::clear(int n, int nActive) {
   // re-allocating it every step costs page faults comparable to the build itself.
   for (Level& level : levels_) {
     level.vertices.clear();
+    level.boxes.clear();
     level.precomputedNeighbourhoods = false;
   }
   stats_ = SpacetreeStatistics{};
@@ -149,7 +149,6 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
     sortKeys_[i] = KeyedIndex{levelVertexKey(l, packVertexKey(vi, vj, vk)), i};
   }
   radixSortByKey(sortKeys_, sortScratch_);
-
   sx_.resize(std::size_t(n));
   sy_.resize(std::size_t(n));
   sz_.resize(std::size_t(n));
@@ -182,13 +181,15 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
       v.end = e;
       v.maxRadius = 0.0;
       for (std::int32_t q = v.begin; q < v.end; ++q) v.maxRadius = std::max(v.maxRadius, sr_[q]);
-      v.sortedByX = v.end - v.begin >= kSweepAndPruneMinParticles;
       v.bigBegin = v.end;
       v.maxSmallRadius = v.maxRadius;
-      if (v.sortedByX) {
-        v.bigBegin = sortRangeByX(v.begin, v.end);
+      v.box = -1;
+      if (v.end - v.begin >= kSweepAndPruneMinParticles) {
+        v.bigBegin = orderCrowdedVertex(v.begin, v.end, x, radius);
         v.maxSmallRadius = 0.0;
         for (std::int32_t q = v.begin; q < v.bigBegin; ++q) v.maxSmallRadius = std::max(v.maxSmallRadius, sr_[q]);
+        v.box = std::int32_t(level.boxes.size());
+        level.boxes.push_back(boxOf(v.begin, v.bigBegin));
       }
       level.vertices.push_back(v);
     }
@@ -207,7 +208,8 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
   for (int l = stats_.deepestPopulatedLevel; l >= 0; --l) {
     Level& level = levels_[l];
     level.precomputedNeighbourhoods = !level.vertices.empty() && finerVertices > 4 * level.vertices.size();
-    if (level.precomputedNeighbourhoods) level.neighbourhoods.build(level.vertices);
+    if (level.precomputedNeighbourhoods)
+      level.neighbourhoods.build(level.vertices, [](const Vertex& u) { return u.sortedByX(); });
     finerVertices += level.vertices.size();
   }
 
@@ -220,47 +222,154 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
   stats_.memoryBytes = bytes;
 }
 
-std::int32_t Spacetree::sortRangeByX(std::int32_t begin, std::int32_t end) {
+void Spacetree::sortByXThenId(std::vector<XAndId>& records) {
+  // Ties in x by id: the order the radix sort leaves them in. (x, id) is a total order, so the
+  // result does not depend on the method: a bucket pass along x (the particles of a vertex
+  // spread over its cell) and an insertion sort of the nearly ordered result, or std::sort
+  // where one bucket is crowded (a cluster inside the vertex).
+  auto less = [](const XAndId& a, const XAndId& b) { return a.x < b.x || (a.x == b.x && a.id < b.id); };
+  const std::size_t count = records.size();
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const XAndId& r : records) {
+    lo = std::min(lo, r.x);
+    hi = std::max(hi, r.x);
+  }
+  const double toBucket = hi > lo ? double(count) / (hi - lo) * (1.0 - 1e-12) : 0.0;
+  bucketFirst_.assign(count + 1, 0);
+  for (const XAndId& r : records) ++bucketFirst_[std::min(count - 1, std::size_t((r.x - lo) * toBucket))];
+  std::int32_t sum = 0, largest = 0;
+  for (std::int32_t& f : bucketFirst_) {
+    const std::int32_t c = f;
+    largest = std::max(largest, c);
+    f = sum;
+    sum += c;
+  }
+  if (largest > kLargestBucket) {
+    std::sort(records.begin(), records.end(), less);
+    return;
+  }
+  byXScratch_.resize(count);
+  for (const XAndId& r : records) byXScratch_[std::size_t(bucketFirst_[std::min(count - 1, std::size_t((r.x - lo) * toBucket))]++)] = r;
+  for (std::size_t t = 1; t < count; ++t) {
+    const XAndId r = byXScratch_[t];
+    std::size_t u = t;
+    for (; u > 0 && less(r, byXScratch_[u - 1]); --u) byXScratch_[u] = byXScratch_[u - 1];
+    byXScratch_[u] = r;
+  }
+  records.swap(byXScratch_);
+}
+
+std::int32_t Spacetree::orderCrowdedVertex(std::int32_t begin, std::int32_t end, const double (*x)[3],
+                                           const double* radius) {
   // A crowded vertex (a lifted cloud) keeps its particles ordered along x, so the sweep can
   // prune its pairs by their x distance instead of testing all of them. Particles much bigger
-  // than the vertex's median go last, unsorted: they would widen every pruning window.
+  // than the vertex's median go last, in their order: they would widen every pruning window.
+  // Sorting (x, id) records directly, not indices through the arrays, then refilling this
+  // vertex's slice of the particle arrays from the caller's arrays.
   const std::size_t count = std::size_t(end - begin);
-  scratchValues_.assign(sr_.begin() + begin, sr_.begin() + end);
-  std::nth_element(scratchValues_.begin(), scratchValues_.begin() + count / 2, scratchValues_.end());
-  const double bigRadius = kBigRadiusOverMedian * scratchValues_[count / 2];
-  order_.resize(count);
-  for (std::int32_t s = begin; s < end; ++s) order_[std::size_t(s - begin)] = s;
-  const auto bigFirst = std::stable_partition(order_.begin(), order_.end(),
-                                              [&](std::int32_t a) { return !(sr_[a] > bigRadius); });
-  std::sort(order_.begin(), bigFirst, [&](std::int32_t a, std::int32_t b) {
-    return sx_[a] < sx_[b] || (sx_[a] == sx_[b] && a < b);
-  });
-  const std::int32_t bigBegin = begin + std::int32_t(bigFirst - order_.begin());
-  auto permute = [&](auto& values) {
-    scratchValues_.resize(order_.size());
-    for (std::size_t t = 0; t < order_.size(); ++t) scratchValues_[t] = double(values[order_[t]]);
-    for (std::size_t t = 0; t < order_.size(); ++t)
-      values[std::size_t(begin) + t] = static_cast<typename std::decay_t<decltype(values)>::value_type>(scratchValues_[t]);
+  scratchValues_.resize(count);
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+  for (std::size_t t = 0; t < count; ++t) {
+    const double r = sr_[std::size_t(begin) + t];
+    scratchValues_[t] = r;
+    smallest = std::min(smallest, r);
+    largest = std::max(largest, r);
+  }
+  // No particle exceeds 4 x the median when none exceeds 4 x the smallest: skip the median.
+  double bigRadius = kBigRadiusOverMedian * smallest;
+  if (largest > bigRadius) {
+    std::nth_element(scratchValues_.begin(), scratchValues_.begin() + count / 2, scratchValues_.end());
+    bigRadius = kBigRadiusOverMedian * scratchValues_[count / 2];
+  }
+  byX_.clear();
+  bigIds_.clear();
+  for (std::size_t t = 0; t < count; ++t) {
+    const std::int32_t id = sortedId_[std::size_t(begin) + t];
+    if (radius[id] > bigRadius)
+      bigIds_.push_back(id);
+    else
+      byX_.push_back({x[id][0], id});
+  }
+  sortByXThenId(byX_);
+  std::size_t t = std::size_t(begin);
+  auto place = [&](std::int32_t id) {
+    sx_[t] = x[id][0];
+    sy_[t] = x[id][1];
+    sz_[t] = x[id][2];
+    sr_[t] = radius[id];
+    sortedId_[t] = id;
+    ++t;
   };
-  permute(sx_);
-  permute(sy_);
-  permute(sz_);
-  permute(sr_);
-  permute(sortedId_);  // int32 through double: exact
-  return bigBegin;
+  for (const XAndId& p : byX_) place(p.id);
+  for (const std::int32_t id : bigIds_) place(id);
+  return begin + std::int32_t(byX_.size());
 }
 
 void Spacetree::gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
-                                            std::int64_t ak, std::vector<std::int32_t>& out) const {
-  out.clear();
+                                            std::int64_t ak, AncestorCache& out) const {
+  out.candidates.clear();
+  out.crowdedVertices.clear();
   const Level& level = levels_[coarseLevel];
   for (int di = -1; di <= 1; ++di)
     for (int dj = -1; dj <= 1; ++dj)
       for (int dk = -1; dk <= 1; ++dk) {
         const std::int32_t w = level.lookup.find(ai + di, aj + dj, ak + dk);
         if (w == VertexLookup::kAbsent) continue;
-        for (std::int32_t q = level.vertices[w].begin; q < level.vertices[w].end; ++q) out.push_back(q);
+        const Vertex& u = level.vertices[w];
+        if (u.sortedByX())
+          out.crowdedVertices.push_back(w);
+        else
+          for (std::int32_t q = u.begin; q < u.end; ++q) out.candidates.push_back(q);
       }
+}
+
+Spacetree::Box Spacetree::boxOf(std::int32_t begin, std::int32_t end) const {
+  Box box;
+  for (int d = 0; d < 3; ++d) {
+    box.lo[d] = std::numeric_limits<double>::infinity();
+    box.hi[d] = -box.lo[d];
+  }
+  for (std::int32_t q = begin; q < end; ++q) {
+    box.lo[0] = std::min(box.lo[0], sx_[q]);
+    box.hi[0] = std::max(box.hi[0], sx_[q]);
+    box.lo[1] = std::min(box.lo[1], sy_[q]);
+    box.hi[1] = std::max(box.hi[1], sy_[q]);
+    box.lo[2] = std::min(box.lo[2], sz_[q]);
+    box.hi[2] = std::max(box.hi[2], sz_[q]);
+  }
+  return box;
+}
+
+Spacetree::Box Spacetree::smallBox(const Level& level, const Vertex& v) const {
+  return v.box >= 0 ? level.boxes[std::size_t(v.box)] : boxOf(v.begin, v.bigBegin);
+}
+
+void Spacetree::particlesNearBox(std::int32_t begin, std::int32_t end, bool sorted, const Box& box,
+                                 double reach, std::vector<std::int32_t>& out, Box& near) const {
+  out.clear();
+  for (int d = 0; d < 3; ++d) {
+    near.lo[d] = std::numeric_limits<double>::infinity();
+    near.hi[d] = -near.lo[d];
+  }
+  // In x order the slab along x is one contiguous run.
+  if (sorted) {
+    begin = firstWithinX(begin, end, box.lo[0], reach);
+    end = endWithinX(begin, end, box.hi[0], reach);
+  }
+  for (std::int32_t q = begin; q < end; ++q) {
+    const double x = sx_[q], y = sy_[q], z = sz_[q];
+    // Differences, as the visitor computes them (see firstWithinX).
+    if (box.lo[0] - x > reach || x - box.hi[0] > reach || box.lo[1] - y > reach || y - box.hi[1] > reach ||
+        box.lo[2] - z > reach || z - box.hi[2] > reach)
+      continue;
+    out.push_back(q);
+    near.lo[0] = std::min(near.lo[0], x);
+    near.hi[0] = std::max(near.hi[0], x);
+    near.lo[1] = std::min(near.lo[1], y);
+    near.hi[1] = std::max(near.hi[1], y);
+    near.lo[2] = std::min(near.lo[2], z);
+    near.hi[2] = std::max(near.hi[2], z);
+  }
 }
 
 }  // namespace spacetree
