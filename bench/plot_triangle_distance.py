@@ -69,6 +69,20 @@ def merge_runs(out, sources):
     print(f"wrote {out} (median of {len(runs)} runs)")
 
 
+def series_style(method, iterations, styles):
+    """Colour, marker, line style, step schedule ("5" or "5+4") and legend label of a series
+    (method, Newton steps); "hybrid2+C" is the two-stage hybrid with C stage-2 steps."""
+    color, marker = styles.get(method, ("gray", "x"))
+    dashes = {0: "-", 8: "-", 6: ":", 4: "--"}.get(iterations, "-.")
+    if method.startswith("hybrid2+"):
+        steps = f"{iterations}+{method[len('hybrid2+'):]}"
+        label = f"two-stage hybrid, {steps} Newton steps"
+    else:
+        steps = str(iterations)
+        label = method if method == "exact" else f"{method}, {iterations} Newton steps"
+    return color, marker, dashes, steps, label
+
+
 def main():
     if len(sys.argv) > 2 and sys.argv[1] == "--median":
         merge_runs(sys.argv[2], sys.argv[3:])
@@ -94,14 +108,7 @@ def main():
             styles[method] = ("tab:purple", "v")
     for (method, iterations), rows in sorted(series.items()):
         rows.sort(key=lambda r: int(r["triangles_per_particle"]))
-        color, marker = styles.get(method, ("gray", "x"))
-        if method.startswith("hybrid2+"):
-            steps = f"{iterations}+{method[len('hybrid2+'):]}"
-            label = f"two-stage hybrid, {steps} Newton steps"
-        else:
-            steps = str(iterations)
-            label = method if method == "exact" else f"{method}, {iterations} Newton steps"
-        dashes = {0: "-", 8: "-", 6: ":", 4: "--"}.get(iterations, "-.")
+        color, marker, dashes, steps, label = series_style(method, iterations, styles)
         speed.plot(column(rows, "triangles_per_particle"), column(rows, "pairs_per_second"),
                    dashes, color=color, marker=marker, label=label)
         if method.startswith("hybrid"):
@@ -160,10 +167,7 @@ def plot_replay(source, styles):
             if tri != count:
                 continue
             rows.sort(key=lambda r: int(r["distinct_pairs_per_pass"]))
-            color, marker = styles.get(method, ("gray", "x"))
-            label = method if method == "exact" else (
-                f"two-stage hybrid, {iterations}+{method[len('hybrid2+'):]} steps"
-                if method.startswith("hybrid2+") else f"{method}, {iterations} steps")
+            color, marker, _, _, label = series_style(method, iterations, styles)
             ax.plot([int(r["distinct_pairs_per_pass"]) for r in rows],
                     [float(r["ns_per_pair"]) for r in rows], "-", color=color, marker=marker,
                     label=label)
@@ -190,14 +194,7 @@ def plot_pipeline(source, styles):
     fig, (cost, ratio) = plt.subplots(1, 2, figsize=(12, 4.8))
     for (method, iterations), rows in sorted(series.items()):
         rows.sort(key=lambda r: int(r["triangles_per_particle"]))
-        color, marker = styles.get(method, ("gray", "x"))
-        dashes = {0: "-", 8: "-", 6: ":", 4: "--"}.get(iterations, "-.")
-        if method.startswith("hybrid2+"):
-            steps = f"{iterations}+{method[len('hybrid2+'):]}"
-            label = f"two-stage hybrid, {steps} Newton steps"
-        else:
-            steps = str(iterations)
-            label = method if method == "exact" else f"{method}, {iterations} Newton steps"
+        color, marker, dashes, steps, label = series_style(method, iterations, styles)
         x = [int(r["triangles_per_particle"]) for r in rows]
         cost.plot(x, [float(r["us_per_particle_pair"]) for r in rows], dashes, color=color,
                   marker=marker, label=label)
