@@ -268,6 +268,8 @@ void AdaptiveGrid::refineForPairs(const double (*x)[3], const double (*v)[3], co
     closePairs_.emplace_back(a, b);
   }
   refineForClosePairs(x, radius, n);
+  beginSpareCheck(x, v, radius, n, first, second, count);
+  coarsenReluctant(x, n);
   collectStatistics();
 }
 
@@ -419,8 +421,14 @@ void AdaptiveGrid::coarsen(const double (*x)[3], int n) {
         for (std::int64_t b = aj; b <= w.j / 3; ++b)
           for (std::int64_t e = ak; e <= w.k / 3; ++e) blocked.insert(key(a, b, e));
     }
-    for (std::uint64_t cellKey : refined_[l].keys)
-      if (!blocked.contains(cellKey)) removals.push_back(cellKey);
+    for (std::uint64_t cellKey : refined_[l].keys) {
+      if (blocked.contains(cellKey)) continue;
+      if (wouldRefineAgain(l, cellKey)) {
+        ++stats_.spared;
+        continue;
+      }
+      removals.push_back(cellKey);
+    }
     refined_[l].eraseAll(removals);
     if (!removals.empty()) ++gridVersion_;
     stats_.coarsenings += removals.size();
@@ -438,6 +446,7 @@ int AdaptiveGrid::admissibleFor(double radius) {
 void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const double* radius, int n) {
   stats_.refinements = 0;
   stats_.coarsenings = 0;
+  stats_.spared = 0;
   n = std::max(n, 0);
   if (options_.type != GridType::Regular && options_.incremental && incrementalValid_ && n > 0 &&
       n == int(host_.size()) && !needsNewGeometry(x, radius, n) &&
@@ -484,12 +493,14 @@ void AdaptiveGrid::update(const double (*x)[3], const double (*v)[3], const doub
   // Naive refinement re-hosts each particle it refines for; refinements elsewhere only add
   // cells, so they cannot make a host vertex hanging.
   if (options_.type == GridType::Reluctant) rehostAll(x, n);
-  if (options_.type != GridType::Regular) {
-    coarsen(x, n);
-    // Reluctant: particles under removed cells lift. Adaptive: every host vertex is kept, so
-    // the cells around it and (having refined children) all their ancestors stay: no host
-    // changes, no re-host needed.
-    if (options_.type == GridType::Reluctant) rehostAll(x, n);
+  // Adaptive: every host vertex is kept, so the cells around it and (having refined children)
+  // all their ancestors stay: no host changes, no re-host needed.
+  if (options_.type == GridType::Adaptive) coarsen(x, n);
+  // Reluctant: coarsening follows the refinement pass (here, or refineForPairs after the
+  // caller's sweep), with its pairs; particles under removed cells lift.
+  if (options_.type == GridType::Reluctant && !options_.pairsFromCaller) {
+    beginSpareCheck(x, v, radius, n, nullptr, nullptr, 0);
+    coarsenReluctant(x, n);
   }
   if (options_.type == GridType::Adaptive && options_.incremental) resetIncrementalState(x, n);
   if (options_.type == GridType::Reluctant && options_.incremental) resetReluctantState(x, radius, n);
@@ -621,13 +632,22 @@ void AdaptiveGrid::coarsenAroundLostVertices() {
     }
   for (const auto& cell : newRefined_)
     if (cell.first >= regularDepth_ && cell.first < depth) candidates_[cell.first].insert(cell.second);
+  for (const auto& cell : spared_)  // spared last time: the criterion may no longer hold
+    if (cell.first >= regularDepth_ && cell.first < depth) candidates_[cell.first].insert(cell.second);
+  spared_.clear();
   std::vector<std::uint64_t>& removals = removals_;
   for (int m = depth - 1; m >= regularDepth_; --m) {
     removals.clear();
     for (std::uint64_t cellKey : candidates_[m].keys) {  // decide the whole level first
       if (!refined_[m].contains(cellKey)) continue;
       const VertexIndex c = unpackVertexKey(cellKey);
-      if (!isBlocked(m, c.i, c.j, c.k)) removals.push_back(cellKey);
+      if (isBlocked(m, c.i, c.j, c.k)) continue;
+      if (wouldRefineAgain(m, cellKey)) {
+        spared_.emplace_back(m, cellKey);
+        ++stats_.spared;
+        continue;
+      }
+      removals.push_back(cellKey);
     }
     if (removals.empty()) continue;
     refined_[m].eraseAll(removals);

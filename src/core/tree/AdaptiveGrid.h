@@ -149,6 +149,33 @@ class AdaptiveGrid {
   bool isKept(int level, std::uint64_t vertexKey) const { return keepCount_[level].get(vertexKey) > 0; }
   bool isBlocked(int level, std::int64_t i, std::int64_t j, std::int64_t k) const;
   void coarsenAroundLostVertices();
+  // Reluctant coarsening spares a cool cell that the refinement criterion would refine again at
+  // once: for a pair of this pass (the caller's sweep, or the grid's own search) one partner is
+  // hosted at a vertex of the cell's children, would sit on the cell's level once it is removed,
+  // and the criterion holds for it there (it would drop, the partner is held by its cell, they
+  // approach). Removing such a cell and refining it at the next pass only lifts and drops the
+  // same particles and shocks the same vertices again. Context of one coarsening:
+  struct SpareCheck {
+    const double (*x)[3] = nullptr;
+    const double (*v)[3] = nullptr;
+    const double* radius = nullptr;
+    int n = 0;
+    const int* first = nullptr;   // the pass's pairs: arrays, or closePairs_ when null
+    const int* second = nullptr;
+    std::size_t count = 0;
+    bool indexed = false;         // partners_ built (on the first cell that needs them)
+    bool hostsIndexed = false;    // scratch particle lists (untracked grid) built
+  };
+  SpareCheck spare_;
+  bool spareActive_ = false;
+  std::vector<int> partnerStart_, partners_;
+  std::vector<Markers> scratchFirstAt_;
+  std::vector<int> scratchNextAt_;
+  std::vector<std::pair<int, std::uint64_t>> spared_;  // (level, cell): spared, re-examined next time
+  void beginSpareCheck(const double (*x)[3], const double (*v)[3], const double* radius, int n,
+                       const int* first, const int* second, std::size_t count);
+  bool wouldRefineAgain(int level, std::uint64_t cellKey);
+  void coarsenReluctant(const double (*x)[3], int n);  // coarsening of a pass, with rehosts
   int admissibleFor(double radius);
   // Incremental reluctant update (options_.incremental), AdaptiveGridReluctant.cpp.
   bool reluctantTracking() const { return options_.type == GridType::Reluctant && incrementalValid_; }

@@ -332,8 +332,130 @@ void AdaptiveGrid::resetReluctantState(const double (*x)[3], const double* radiu
       if (std::min(kMaxHeat, m / 2 + heatInput_[l][s]) != m) markDirty(l, s);
     }
   for (auto& lost : lostKept_) lost.clear();
+  // The next coarsening examines every refined cell once, as the full one does (which cells
+  // the criterion spares depends on that pass's pairs).
+  spared_.clear();
+  for (int l = regularDepth_; l < depth; ++l)
+    for (std::uint64_t cellKey : refined_[l].keys) spared_.emplace_back(l, cellKey);
   keepEntries_ = reluctantEntries();
   incrementalValid_ = true;
+}
+
+void AdaptiveGrid::coarsenReluctant(const double (*x)[3], int n) {
+  if (reluctantTracking()) {
+    coarsenAroundLostVertices();
+    for (auto& lost : lostKept_) lost.clear();
+    newRefined_.clear();
+    rehostAroundRemoved(x);
+  } else {
+    coarsen(x, n);
+    rehostAll(x, n);
+  }
+  spareActive_ = false;
+}
+
+void AdaptiveGrid::beginSpareCheck(const double (*x)[3], const double (*v)[3], const double* radius, int n,
+                                   const int* first, const int* second, std::size_t count) {
+  spare_ = SpareCheck{};
+  spare_.x = x;
+  spare_.v = v;
+  spare_.radius = radius;
+  spare_.n = n;
+  spare_.first = first;
+  spare_.second = second;
+  spare_.count = first && second ? count : 0;
+  spareActive_ = true;
+}
+
+bool AdaptiveGrid::wouldRefineAgain(int m, std::uint64_t cellKey) {
+  if (!spareActive_ || m + 1 > geometry_.depth) return false;
+  SpareCheck& s = spare_;
+  const int n = s.n;
+  const double (*x)[3] = s.x;
+  if (!s.indexed) {  // partners per particle (CSR), both directions
+    partnerStart_.assign(std::size_t(n) + 1, 0);
+    auto forEachPair = [&](auto f) {
+      if (s.first) {
+        for (std::size_t k = 0; k < s.count; ++k) f(s.first[k], s.second[k]);
+      } else {
+        for (const auto& pair : closePairs_) f(pair.first, pair.second);
+      }
+    };
+    auto valid = [n](int a, int b) { return a >= 0 && b >= 0 && a < n && b < n && a != b; };
+    forEachPair([&](int a, int b) {
+      if (!valid(a, b)) return;
+      ++partnerStart_[std::size_t(a) + 1];
+      ++partnerStart_[std::size_t(b) + 1];
+    });
+    for (int i = 0; i < n; ++i) partnerStart_[std::size_t(i) + 1] += partnerStart_[std::size_t(i)];
+    partners_.resize(std::size_t(partnerStart_[std::size_t(n)]));
+    std::vector<int>& fill = scratchNextAt_;  // borrowed: the host lists are built after this
+    fill.assign(partnerStart_.begin(), partnerStart_.end() - 1);
+    forEachPair([&](int a, int b) {
+      if (!valid(a, b)) return;
+      partners_[std::size_t(fill[std::size_t(a)]++)] = b;
+      partners_[std::size_t(fill[std::size_t(b)]++)] = a;
+    });
+    s.indexed = true;
+  }
+  const bool tracked = reluctantTracking();
+  if (!tracked && !s.hostsIndexed) {  // particles per host vertex, from the hosts
+    scratchFirstAt_.resize(std::size_t(geometry_.depth) + 1);
+    for (Markers& m : scratchFirstAt_) m.reset(0);
+    scratchNextAt_.assign(std::size_t(n), -1);
+    for (int i = 0; i < n; ++i) {
+      const int l = host_[i];
+      if (l <= regularDepth_) continue;
+      const Index3 w = nearestVertex(l, x[i]);
+      std::int64_t& head = scratchFirstAt_[std::size_t(l)][key(w.i, w.j, w.k)];
+      scratchNextAt_[std::size_t(i)] = int(head) - 1;
+      head = i + 1;
+    }
+    s.hostsIndexed = true;
+  }
+  const VertexIndex c = unpackVertexKey(cellKey);
+  const double h = meshSize(m);
+  const double sqrt3 = std::sqrt(3.0);
+  // p, hosted at a vertex of C's children, sits on level m (or coarser) once C is removed; the
+  // criterion of refineForClosePairs there refines the parents of the 2^d cells around p's
+  // nearest vertex on level m + 1 (its present host vertex, in C's closed patch): C among them.
+  auto criterionHolds = [&](int p) {
+    if (admissible_[p] <= m) return false;  // would not drop
+    const Index3 pc = cellOf(m, x[p]);
+    for (int t = partnerStart_[std::size_t(p)]; t < partnerStart_[std::size_t(p) + 1]; ++t) {
+      const int q = partners_[std::size_t(t)];
+      bool held = false;
+      if (std::min(host_[q], m) == m) {  // q on level m too (a finer q under C lifts with p)
+        const Index3 w = nearestVertex(m, x[q]);
+        held = w.i >= pc.i && w.i <= pc.i + 1 && w.j >= pc.j && w.j <= pc.j + 1 && w.k >= pc.k && w.k <= pc.k + 1;
+      } else {  // coarser q: virtual on p's cell's vertices within the link radius
+        const double reach = s.radius[q] + 2.0 * options_.epsilon + sqrt3 * h;
+        for (int corner = 0; corner < 8 && !held; ++corner) {
+          const double vx = geometry_.origin[0] + double(pc.i + (corner & 1)) * h;
+          const double vy = geometry_.origin[1] + double(pc.j + ((corner >> 1) & 1)) * h;
+          const double vz = geometry_.origin[2] + double(pc.k + ((corner >> 2) & 1)) * h;
+          const double dx = x[q][0] - vx, dy = x[q][1] - vy, dz = x[q][2] - vz;
+          held = dx * dx + dy * dy + dz * dz < reach * reach;
+        }
+      }
+      if (!held) continue;
+      if (s.v) {
+        double approach = 0.0;
+        for (int d = 0; d < 3; ++d) approach += (x[q][d] - x[p][d]) * (s.v[q][d] - s.v[p][d]);
+        if (!(approach < 0.0)) continue;
+      }
+      return true;
+    }
+    return false;
+  };
+  const std::vector<Markers>& firstAt = tracked ? firstAtVertex_ : scratchFirstAt_;
+  const std::vector<int>& nextAt = tracked ? nextAtVertex_ : scratchNextAt_;
+  for (std::int64_t a = 3 * c.i; a <= 3 * c.i + 3; ++a)
+    for (std::int64_t b = 3 * c.j; b <= 3 * c.j + 3; ++b)
+      for (std::int64_t e = 3 * c.k; e <= 3 * c.k + 3; ++e)
+        for (int p = int(firstAt[std::size_t(m) + 1].get(key(a, b, e))) - 1; p >= 0; p = nextAt[std::size_t(p)])
+          if (criterionHolds(p)) return true;
+  return false;
 }
 
 bool AdaptiveGrid::updateReluctantIncrementally(const double (*x)[3], const double (*v)[3], const double* radius,
@@ -366,16 +488,15 @@ bool AdaptiveGrid::updateReluctantIncrementally(const double (*x)[3], const doub
   annealDirtyMarkers();
   // 3. Refinement for close pairs found here (else the caller's refineForPairs, after the
   //    tree is built); it re-hosts the particles that read a refined cell.
+  // 4. Coarsening around vertices that stopped being kept (and cells spared last time), with
+  //    the pass's pairs; then the particles under removed cells lift. With the caller's pairs
+  //    both follow its sweep, in refineForPairs.
   if (!options_.pairsFromCaller) {
     searchClosePairs(x, v, radius, n);
     refineForClosePairs(x, radius, n);
+    beginSpareCheck(x, v, radius, n, nullptr, nullptr, 0);
+    coarsenReluctant(x, n);
   }
-  // 4. Coarsening around vertices that stopped being kept, then the particles under removed
-  //    cells lift.
-  coarsenAroundLostVertices();
-  for (auto& lost : lostKept_) lost.clear();
-  newRefined_.clear();
-  rehostAroundRemoved(x);
   stats_.incremental = true;
   stats_.rehosted = rehostCount_;
   hostsCurrent_ = false;

@@ -18,6 +18,7 @@ struct AdaptiveGridStatistics {
   std::uint64_t cells = 0;                      // sum over the levels
   std::uint64_t refinements = 0;                // cells refined in the last update
   std::uint64_t coarsenings = 0;                // patches of 27 cells removed in the last update
+  std::uint64_t spared = 0;                     // cool cells kept: the criterion would refine them again
   int deepestLevel = 0;                         // finest level hosting a particle
   int regularDepth = 0;                         // levels above it are refined everywhere
   std::uint64_t geometryResets = 0;             // cube re-chosen (particles left it), cumulative
