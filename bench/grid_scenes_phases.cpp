@@ -2,7 +2,8 @@
 // bench/grid_scenes.py (build/bench_grid_scenes/<scene>.data): the grid update, the Spacetree
 // build on its levels, the sweep (pairs within the cut-off) and, for the reluctant grid, the
 // refinement for the sweep's pairs. Same halo (skin 2e-4) and step (2e-6 s, free flight) as
-// the LIGGGHTS deck; the LIGGGHTS list filling is not included.
+// the LIGGGHTS deck; the LIGGGHTS list filling is not included. refine_for_pairs_ms is
+// refineForPairs: for the reluctant grid the refinement and the coarsening after the sweep.
 //   bench_grid_scenes_phases <data file> [steps] > phases.csv
 #include <chrono>
 #include <cstdio>

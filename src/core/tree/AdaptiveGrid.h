@@ -55,7 +55,8 @@ class AdaptiveGrid {
   // Throws std::invalid_argument for inconsistent options (threshold >= shock, ...).
   explicit AdaptiveGrid(AdaptiveGridOptions options = {});
 
-  // One step: re-host the moved particles, refine, coarsen, re-host. Velocities drive the
+  // One step: re-host the moved particles, refine, coarsen, re-host (reluctant with
+  // pairsFromCaller: re-host and anneal; refineForPairs refines and coarsens). Velocities drive the
   // reluctant approach test (v may be nullptr: every close pair then counts as approaching).
   // The cube is re-chosen (grid reset to the start-off grid) when a particle leaves it or no
   // longer fits the root cell.
@@ -63,9 +64,11 @@ class AdaptiveGrid {
 
   // Reluctant grid with pairsFromCaller: refines for the pairs (first[k], second[k]) that the
   // sweep on this step's tree found (bounding spheres + eps overlap), keeping those that
-  // approach (v may be nullptr). The refinement is what the paper triggers from inside the
-  // traversal; particles drop into the new cells at once (hosts re-derived). x must be the
-  // positions of the last update().
+  // approach (v may be nullptr), then coarsens (cool cells, except those the criterion would
+  // refine again at once for these pairs). This is what the paper triggers from inside the
+  // traversal; particles drop into the new cells and lift out of the removed ones at once
+  // (hosts re-derived). x must be the positions of the last update(). With pairsFromCaller,
+  // update() does not coarsen: call this after every update().
   void refineForPairs(const double (*x)[3], const double (*v)[3], const double* radius, int n,
                       const int* first, const int* second, std::size_t count);
 

@@ -15,7 +15,13 @@
 //   finest level first, so a vertex costs nothing once converged.
 // * Coarsening. Hot markers (>= threshold) and kept children are counted per vertex (as the
 //   adaptive grid counts particles); only cells around vertices that stopped being kept, cells
-//   refined since the last coarsening and parents of removed cells are re-examined.
+//   refined since the last coarsening, parents of removed cells and cells spared last time
+//   are re-examined.
+// * Spared cells. Coarsening follows the refinement pass and uses its pairs: a cool cell that
+//   the criterion would refine again at once (a partner hosted at its children's vertices
+//   would drop from the cell's level, the other is held there, they approach) stays. Without
+//   this an approaching pair far from others had its cells removed and refined again every
+//   two or three updates (markers of 1-particle vertices settle at 1-2 < threshold 4).
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
