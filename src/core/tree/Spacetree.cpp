@@ -134,13 +134,22 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
   sortKeys_.resize(std::size_t(n));
   double lastRadius = -1.0;  // radii repeat (monodisperse species): skip the log
   int lastLevel = 0;
+  const int levelCount = int(levels_.size());
   for (int i = 0; i < n; ++i) {
-    if (radius[i] != lastRadius) {
-      lastRadius = radius[i];
-      lastLevel = hostLevel(requiredMeshSize(radius[i]));
+    // A caller's level may be coarser than the finest admissible one, never finer. Mesh sizes
+    // fall with the level, so a level whose mesh still fits the particle is at or above the
+    // finest admissible one: taken as it is, without the level search (its logarithm).
+    int l;
+    const int wanted = hostLevelOf ? hostLevelOf[i] : -1;
+    if (wanted >= 0 && wanted < levelCount && levels_[wanted].meshSize >= requiredMeshSize(radius[i])) {
+      l = wanted;
+    } else {
+      if (radius[i] != lastRadius) {
+        lastRadius = radius[i];
+        lastLevel = hostLevel(requiredMeshSize(radius[i]));
+      }
+      l = hostLevelOf ? std::clamp(hostLevelOf[i], 0, lastLevel) : lastLevel;
     }
-    // A caller's level may be coarser than the finest admissible one, never finer.
-    const int l = hostLevelOf ? std::clamp(hostLevelOf[i], 0, lastLevel) : lastLevel;
     particleLevel_[i] = l;
     const double inv = 1.0 / levels_[l].meshSize;
     const std::int64_t vi = std::int64_t((x[i][0] - origin_[0]) * inv + 0.5);
