@@ -365,13 +365,21 @@ void Spacetree::particlesNearBox(std::int32_t begin, std::int32_t end, bool sort
     begin = firstWithinX(begin, end, box.lo[0], reach);
     end = endWithinX(begin, end, box.hi[0], reach);
   }
+  // Branch-free selection (most of a crowded vertex lies beyond the thin slab), then the box.
+  if (end <= begin) return;
+  out.resize(std::size_t(end - begin));
+  std::size_t count = 0;
   for (std::int32_t q = begin; q < end; ++q) {
     const double x = sx_[q], y = sy_[q], z = sz_[q];
     // Differences, as the visitor computes them (see firstWithinX).
-    if (box.lo[0] - x > reach || x - box.hi[0] > reach || box.lo[1] - y > reach || y - box.hi[1] > reach ||
-        box.lo[2] - z > reach || z - box.hi[2] > reach)
-      continue;
-    out.push_back(q);
+    const bool beyond = (box.lo[0] - x > reach) | (x - box.hi[0] > reach) | (box.lo[1] - y > reach) |
+                        (y - box.hi[1] > reach) | (box.lo[2] - z > reach) | (z - box.hi[2] > reach);
+    out[count] = q;
+    count += beyond ? 0 : 1;
+  }
+  out.resize(count);
+  for (std::int32_t q : out) {
+    const double x = sx_[q], y = sy_[q], z = sz_[q];
     near.lo[0] = std::min(near.lo[0], x);
     near.hi[0] = std::max(near.hi[0], x);
     near.lo[1] = std::min(near.lo[1], y);
