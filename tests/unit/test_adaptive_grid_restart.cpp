@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "moving_spheres.h"
+#include "refine_for_tree_pairs.h"
 #include "tree/AdaptiveGrid.h"
 #include "tree/Spacetree.h"
 
@@ -53,13 +54,7 @@ std::vector<Cell> leafCells(const AdaptiveGrid& g) {
 // One step as fix spacetree does it: update, sweep, report the pairs (reluctant).
 void step(AdaptiveGrid& g, Spacetree& tree, const Scene& s) {
   g.update(s.pos(), s.vel(), s.r.data(), s.size());
-  g.buildSpacetree(tree, s.pos(), s.r.data(), s.size(), s.size());
-  std::vector<int> first, second;
-  tree.forEachPairWithin([&](int i, int j, double) {
-    first.push_back(i);
-    second.push_back(j);
-  });
-  g.refineForPairs(s.pos(), s.vel(), s.r.data(), s.size(), first.data(), second.data(), first.size());
+  refineForTreePairs(g, tree, s);
 }
 
 void expectSameStatistics(const AdaptiveGrid& a, const AdaptiveGrid& b) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "moving_spheres.h"
+#include "refine_for_tree_pairs.h"
 #include "tree/AdaptiveGrid.h"
 #include "tree/Spacetree.h"
 
@@ -51,17 +52,6 @@ Cloud clusters(unsigned seed, double bigRadius = 0.03) {
   return c;
 }
 
-// The caller's sweep (fix spacetree): close pairs of the tree on the grid's levels.
-void refineForSweepPairs(AdaptiveGrid& grid, Spacetree& tree, const Cloud& c) {
-  grid.buildSpacetree(tree, c.pos(), c.r.data(), c.size(), c.size());
-  std::vector<int> first, second;
-  tree.forEachPairWithin([&](int i, int j, double) {
-    first.push_back(i);
-    second.push_back(j);
-  });
-  grid.refineForPairs(c.pos(), c.vel(), c.r.data(), c.size(), first.data(), second.data(), first.size());
-}
-
 struct Totals {
   int incrementalSteps = 0;
   std::uint64_t rehosted = 0, refinements = 0, coarsenings = 0, resets = 0, spared = 0;
@@ -99,8 +89,8 @@ Totals compareOverRandomSteps(bool pairsFromCaller, unsigned seed, int steps) {
       t.spared += incremental.statistics().spared;
     }
     if (pairsFromCaller) {
-      refineForSweepPairs(incremental, treeA, c);
-      refineForSweepPairs(full, treeB, c);
+      refineForTreePairs(incremental, treeA, c);
+      refineForTreePairs(full, treeB, c);
       EXPECT_EQ(incremental.hostLevels(), full.hostLevels()) << "after refineForPairs";
       EXPECT_EQ(incremental.serialise(), full.serialise()) << "after refineForPairs";
       if (testing::Test::HasFailure()) return t;
@@ -198,7 +188,7 @@ TEST(ReluctantIncremental, SaturatedMarkersEqualTheFullUpdate) {
   Spacetree tree(SpacetreeOptions{eps, spacetree::kMaxSpacetreeLevel});
   for (int step = 0; step < 20; ++step) {
     start.update(c.pos(), c.vel(), c.r.data(), c.size());
-    refineForSweepPairs(start, tree, c);
+    refineForTreePairs(start, tree, c);
     for (int i = 0; i < c.size(); ++i)
       for (int d = 0; d < 3; ++d) c.x[i][d] = std::clamp(c.x[i][d] + 0.001 * c.v[i][d], 0.02, 0.98);
   }
@@ -218,8 +208,8 @@ TEST(ReluctantIncremental, SaturatedMarkersEqualTheFullUpdate) {
     incrementalSteps += incremental.statistics().incremental;
     if (incremental.statistics().incremental)
       saturated += int(std::count(mine.begin() + kHeaderWords, mine.end(), std::int64_t(1) << 40));
-    refineForSweepPairs(incremental, tree, c);
-    refineForSweepPairs(full, treeB, c);
+    refineForTreePairs(incremental, tree, c);
+    refineForTreePairs(full, treeB, c);
     ASSERT_EQ(incremental.serialise(), full.serialise());
     for (int i = 0; i < c.size(); ++i)
       for (int d = 0; d < 3; ++d) c.x[i][d] = std::clamp(c.x[i][d] + 0.001 * c.v[i][d], 0.02, 0.98);

@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <vector>
 
 #include "moving_spheres.h"
+#include "refine_for_tree_pairs.h"
 #include "tree/AdaptiveGrid.h"
 #include "tree/Spacetree.h"
 
@@ -25,13 +25,7 @@ constexpr double kEps = 0.0005;
 // One list build as fix spacetree does it: update, tree on the grid, sweep, refineForPairs.
 void listBuild(AdaptiveGrid& grid, Spacetree& tree, const MovingSpheres& c) {
   grid.update(c.pos(), c.vel(), c.r.data(), c.size());
-  grid.buildSpacetree(tree, c.pos(), c.r.data(), c.size(), c.size());
-  std::vector<int> first, second;
-  tree.forEachPairWithin([&](int i, int j, double) {
-    first.push_back(i);
-    second.push_back(j);
-  });
-  grid.refineForPairs(c.pos(), c.vel(), c.r.data(), c.size(), first.data(), second.data(), first.size());
+  refineForTreePairs(grid, tree, c);
 }
 
 struct Phase {

@@ -273,8 +273,20 @@ void AdaptiveGrid::refineForPairs(const double (*x)[3], const double (*v)[3], co
   collectStatistics();
 }
 
+bool AdaptiveGrid::linksToCell(int level, const Index3& c, const double q[3], double radius) const {
+  const double h = meshSize(level);
+  const double reach = radius + 2.0 * options_.epsilon + std::sqrt(3.0) * h;
+  for (int corner = 0; corner < 8; ++corner) {
+    const double vx = geometry_.origin[0] + double(c.i + (corner & 1)) * h;
+    const double vy = geometry_.origin[1] + double(c.j + ((corner >> 1) & 1)) * h;
+    const double vz = geometry_.origin[2] + double(c.k + ((corner >> 2) & 1)) * h;
+    const double dx = q[0] - vx, dy = q[1] - vy, dz = q[2] - vz;
+    if (dx * dx + dy * dy + dz * dz < reach * reach) return true;
+  }
+  return false;
+}
+
 void AdaptiveGrid::refineForClosePairs(const double (*x)[3], const double* radius, int n) {
-  const double sqrt3 = std::sqrt(3.0);
   // Refine the cell containing particle p if p would drop and q is held by the cell's 2^d
   // vertices (real there, or virtual: coarser and within the link radius of a vertex). The
   // neighbours p's next finer vertex needs are refined with it, so that p really drops.
@@ -293,15 +305,7 @@ void AdaptiveGrid::refineForClosePairs(const double (*x)[3], const double* radiu
           const Index3 w = nearestVertex(l, x[q]);
           held = w.i >= c.i && w.i <= c.i + 1 && w.j >= c.j && w.j <= c.j + 1 && w.k >= c.k && w.k <= c.k + 1;
         } else {
-          const double h = meshSize(l);
-          const double reach = radius[q] + 2.0 * options_.epsilon + sqrt3 * h;
-          for (int corner = 0; corner < 8 && !held; ++corner) {
-            const double vx = geometry_.origin[0] + double(c.i + (corner & 1)) * h;
-            const double vy = geometry_.origin[1] + double(c.j + ((corner >> 1) & 1)) * h;
-            const double vz = geometry_.origin[2] + double(c.k + ((corner >> 2) & 1)) * h;
-            const double dx = x[q][0] - vx, dy = x[q][1] - vy, dz = x[q][2] - vz;
-            held = dx * dx + dy * dy + dz * dz < reach * reach;
-          }
+          held = linksToCell(l, c, x[q], radius[q]);
         }
         if (!held) continue;
         const Index3 w = nearestVertex(l + 1, x[p]);

@@ -142,6 +142,9 @@ class AdaptiveGrid {
   void refineNaively(const double (*x)[3], int n);
   void searchClosePairs(const double (*x)[3], const double (*v)[3], const double* radius, int n);
   void refineForClosePairs(const double (*x)[3], const double* radius, int n);
+  // A coarser particle at q is virtual on a vertex of cell c of `level`: within its radius
+  // + 2 eps + h sqrt(3) of one of the cell's 2^d corners (the reluctant criterion's "held").
+  bool linksToCell(int level, const Index3& c, const double q[3], double radius) const;
   void updateHeatMarkers(const double (*x)[3], int n);
   void coarsen(const double (*x)[3], int n);
   void collectStatistics();

@@ -420,8 +420,6 @@ bool AdaptiveGrid::wouldRefineAgain(int m, std::uint64_t cellKey) {
     s.hostsIndexed = true;
   }
   const VertexIndex c = unpackVertexKey(cellKey);
-  const double h = meshSize(m);
-  const double sqrt3 = std::sqrt(3.0);
   // p, hosted at a vertex of C's children, sits on level m (or coarser) once C is removed; the
   // criterion of refineForClosePairs there refines the parents of the 2^d cells around p's
   // nearest vertex on level m + 1 (its present host vertex, in C's closed patch): C among them.
@@ -435,14 +433,7 @@ bool AdaptiveGrid::wouldRefineAgain(int m, std::uint64_t cellKey) {
         const Index3 w = nearestVertex(m, x[q]);
         held = w.i >= pc.i && w.i <= pc.i + 1 && w.j >= pc.j && w.j <= pc.j + 1 && w.k >= pc.k && w.k <= pc.k + 1;
       } else {  // coarser q: virtual on p's cell's vertices within the link radius
-        const double reach = s.radius[q] + 2.0 * options_.epsilon + sqrt3 * h;
-        for (int corner = 0; corner < 8 && !held; ++corner) {
-          const double vx = geometry_.origin[0] + double(pc.i + (corner & 1)) * h;
-          const double vy = geometry_.origin[1] + double(pc.j + ((corner >> 1) & 1)) * h;
-          const double vz = geometry_.origin[2] + double(pc.k + ((corner >> 2) & 1)) * h;
-          const double dx = x[q][0] - vx, dy = x[q][1] - vy, dz = x[q][2] - vz;
-          held = dx * dx + dy * dy + dz * dz < reach * reach;
-        }
+        held = linksToCell(m, pc, x[q], s.radius[q]);
       }
       if (!held) continue;
       if (s.v) {
