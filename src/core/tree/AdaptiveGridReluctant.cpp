@@ -429,7 +429,9 @@ bool AdaptiveGrid::wouldRefineAgain(int m, std::uint64_t cellKey) {
     for (int t = partnerStart_[std::size_t(p)]; t < partnerStart_[std::size_t(p) + 1]; ++t) {
       const int q = partners_[std::size_t(t)];
       bool held = false;
-      if (std::min(host_[q], m) == m) {  // q on level m too (a finer q under C lifts with p)
+      // A finer q is taken on level m too: under C it lifts with p; elsewhere that can only
+      // spare more (a cell kept longer costs comparisons, never pairs).
+      if (std::min(host_[q], m) == m) {
         const Index3 w = nearestVertex(m, x[q]);
         held = w.i >= pc.i && w.i <= pc.i + 1 && w.j >= pc.j && w.j <= pc.j + 1 && w.k >= pc.k && w.k <= pc.k + 1;
       } else {  // coarser q: virtual on p's cell's vertices within the link radius

@@ -16,8 +16,9 @@ struct AdaptiveLevelStatistics {
 struct AdaptiveGridStatistics {
   std::vector<AdaptiveLevelStatistics> levels;  // index = level, 0 = root
   std::uint64_t cells = 0;                      // sum over the levels
-  std::uint64_t refinements = 0;                // cells refined in the last update
-  std::uint64_t coarsenings = 0;                // patches of 27 cells removed in the last update
+  // Counted over the last update() and the refineForPairs() after it (one list build).
+  std::uint64_t refinements = 0;                // cells refined
+  std::uint64_t coarsenings = 0;                // patches of 27 cells removed
   std::uint64_t spared = 0;                     // cool cells kept: the criterion would refine them again
   int deepestLevel = 0;                         // finest level hosting a particle
   int regularDepth = 0;                         // levels above it are refined everywhere
