@@ -172,8 +172,7 @@ class AdaptiveGrid {
     bool indexed = false;         // partners_ built (on the first cell that needs them)
     bool hostsIndexed = false;    // scratch particle lists (untracked grid) built
   };
-  SpareCheck spare_;
-  bool spareActive_ = false;
+  SpareCheck spare_;  // x == nullptr: no refinement pass running, nothing is spared
   std::vector<int> partnerStart_, partners_;
   std::vector<Markers> scratchFirstAt_;
   std::vector<int> scratchNextAt_;

@@ -357,7 +357,7 @@ void AdaptiveGrid::coarsenReluctant(const double (*x)[3], int n) {
     coarsen(x, n);
     rehostAll(x, n);
   }
-  spareActive_ = false;
+  spare_ = SpareCheck{};  // no check outside a pass
 }
 
 void AdaptiveGrid::beginSpareCheck(const double (*x)[3], const double (*v)[3], const double* radius, int n,
@@ -370,11 +370,10 @@ void AdaptiveGrid::beginSpareCheck(const double (*x)[3], const double (*v)[3], c
   spare_.first = first;
   spare_.second = second;
   spare_.count = first && second ? count : 0;
-  spareActive_ = true;
 }
 
 bool AdaptiveGrid::wouldRefineAgain(int m, std::uint64_t cellKey) {
-  if (!spareActive_ || m + 1 > geometry_.depth) return false;
+  if (!spare_.x || m + 1 > geometry_.depth) return false;  // outside a pass: no spare check
   SpareCheck& s = spare_;
   const int n = s.n;
   const double (*x)[3] = s.x;
