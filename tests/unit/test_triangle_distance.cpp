@@ -244,6 +244,42 @@ TrianglePair farFromOriginPair(PairFactory& f) {
   return p;
 }
 
+// Very different sizes (a grain's triangle against a coarse obstacle's, the hybrid's
+// scale-aware path): a triangle `ratio` times larger than a random unit one, which sits over
+// the large one's face (60 %), near one of its edges (20 %) or vertices (10 %) at an
+// adversarial offset, or pierces it (10 %).
+PairGenerator sizeRatioPair(double ratio) {
+  return [ratio](PairFactory& f) {
+    Triangle large = f.randomTriangle();
+    while ((large[1] - large[0]).cross(large[2] - large[0]).norm() < 0.2) large = f.randomTriangle();
+    for (int i = 0; i < 3; ++i) large[i] *= ratio;
+    const Vector3d n = (large[1] - large[0]).cross(large[2] - large[0]).normalized();
+    double w1 = f.uniform(0, 1), w2 = f.uniform(0, 1);
+    if (w1 + w2 > 1) { w1 = 1 - w1; w2 = 1 - w2; }
+    const double r = f.uniform(0, 1);
+    Vector3d anchor = large[0] + w1 * (large[1] - large[0]) + w2 * (large[2] - large[0]);
+    if (r >= 0.6 && r < 0.8) {
+      const int e = int(f.uniform(0, 3)) % 3;
+      anchor = large[e] + f.uniform(0, 1) * (large[(e + 1) % 3] - large[e]);
+    } else if (r >= 0.8 && r < 0.9) {
+      anchor = large[int(f.uniform(0, 3)) % 3];
+    }
+    const Vector3d apex = anchor + n * adversarialOffset(f) + f.inCube() * (r < 0.6 ? 0.0 : 0.3);
+    Triangle small;
+    if (r < 0.9) {
+      small[0] = apex;
+      small[1] = apex + n * f.uniform(-0.2, 1) + f.inCube() * 0.7;
+      small[2] = apex + n * f.uniform(-0.2, 1) + f.inCube() * 0.7;
+    } else {
+      const Vector3d dir = (n + f.inCube() * 0.8).normalized();
+      small[0] = anchor - dir * f.uniform(0.01, 1);
+      small[1] = anchor + dir * f.uniform(0.01, 1);
+      small[2] = anchor + f.inCube();
+    }
+    return TrianglePair{small, large};
+  };
+}
+
 std::vector<TrianglePair> makePairs(const PairGenerator& generator, int count, unsigned seed,
                                     bool place = true) {
   PairFactory f(seed);
@@ -270,6 +306,9 @@ const std::vector<NamedGenerator>& adversarialSets() {
       {"sliver-1e6", sliverPair, true},          {"shared-vertex", sharedVertexPair, true},
       {"intersecting", intersectingPair, true},  {"degenerate", degeneratePair, true},
       {"far-from-origin", farFromOriginPair, false},
+      {"size-ratio-1e2", sizeRatioPair(1e2), true},
+      {"size-ratio-1e4", sizeRatioPair(1e4), true},
+      {"size-ratio-1e6", sizeRatioPair(1e6), true},
   };
   return sets;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "geometry/IsaDispatch.h"
+#include "geometry/LargeTriangleClip.h"
 #include "geometry/PenaltyTriangleDistance.h"
 #include "geometry/TriangleDistance.h"
 #include "geometry/TrianglePairSources.h"
@@ -86,6 +87,86 @@ SPACETREE_INLINE_INTO_CLONES void continueQueued(const PairSource& pairs, Contin
   queue.size = 0;
 }
 
+// The scale-aware path: pairs of very different triangle sizes that stage 1 leaves uncertified,
+// with the large triangle clipped to the small one's neighbourhood (LargeTriangleClip.h),
+// gathered into full batches that run the whole schedule from the centroids. Each lane carries
+// the original pair's length scale (the certification's slack must cover the rounding of the
+// clipped vertices, a few ulps of the large triangle) and the clip's vertex-face bounds.
+struct ClipQueue {
+  TrianglePairBatch batch{};
+  std::size_t index[kTrianglePairBatchSize] = {};
+  double lengthScale[kTrianglePairBatchSize] = {};
+  double upperBound[kTrianglePairBatchSize] = {};
+  double lowerBound[kTrianglePairBatchSize] = {};
+  double pointOnFirst[3][kTrianglePairBatchSize] = {};
+  double pointOnSecond[3][kTrianglePairBatchSize] = {};
+  int size = 0;
+
+  // Queues pair k (first, second) with its large triangle (0 or 1) clipped; false when the
+  // clip does not apply (the pair takes the ordinary path).
+  bool push(const Triangle& first, const Triangle& second, int large, double h, std::size_t k) {
+    const LargeTriangleClip clip =
+        large == 0 ? clipLargeTriangle(first, second) : clipLargeTriangle(second, first);
+    if (!clip.clipped) return false;
+    batch.set(size, large == 0 ? clip.part : first, large == 1 ? clip.part : second);
+    index[size] = k;
+    lengthScale[size] = h;
+    upperBound[size] = clip.upperBound;
+    lowerBound[size] = clip.lowerBound;
+    const Eigen::Vector3d& onFirst = large == 0 ? clip.pointOnLarge : clip.pointOnSmall;
+    const Eigen::Vector3d& onSecond = large == 0 ? clip.pointOnSmall : clip.pointOnLarge;
+    for (int c = 0; c < 3; ++c) {
+      pointOnFirst[c][size] = onFirst[c];
+      pointOnSecond[c][size] = onSecond[c];
+    }
+    ++size;
+    return true;
+  }
+};
+
+template <class PairSource>
+SPACETREE_INLINE_INTO_CLONES void runClipped(const PairSource& pairs, ClipQueue& queue,
+                                             const double* weights, int steps,
+                                             const PenaltyOptions& penaltyOptions,
+                                             const HybridOptions& options,
+                                             TriangleDistanceResult* results,
+                                             HybridStatistics& counts) {
+  if (queue.size == 0) return;
+  for (int l = queue.size; l < kTrianglePairBatchSize; ++l)
+    for (int t = 0; t < 2; ++t)
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c)
+          queue.batch.coordinate[t][v][c][l] = queue.batch.coordinate[t][v][c][0];
+  PenaltyBatchResult penalty;
+  penaltyTriangleDistanceBatchContinued(queue.batch, weights, steps, nullptr, penaltyOptions,
+                                        penalty);
+  // The better of the kernel's and the clip's bounds (both rigorous), the original scale.
+  for (int l = 0; l < queue.size; ++l) {
+    if (queue.upperBound[l] < penalty.distance[l]) {
+      penalty.distance[l] = queue.upperBound[l];
+      for (int c = 0; c < 3; ++c) {
+        penalty.pointOnFirst[c][l] = queue.pointOnFirst[c][l];
+        penalty.pointOnSecond[c][l] = queue.pointOnSecond[c][l];
+      }
+    }
+    if (queue.lowerBound[l] > penalty.lowerBound[l]) penalty.lowerBound[l] = queue.lowerBound[l];
+    penalty.lengthScale[l] = queue.lengthScale[l];
+  }
+  int verdict[kTrianglePairBatchSize];
+  verdictsOf(penalty, options, verdict);
+  counts.clipped += std::size_t(queue.size);
+  for (int l = 0; l < queue.size; ++l) {
+    const std::size_t k = queue.index[l];
+    if (verdict[l] == 0) {
+      results[k] = penalty.lane(l);
+    } else {
+      ++(verdict[l] == 2 ? counts.contactBandFallbacks : counts.residualFallbacks);
+      results[k] = triangleDistance(pairs.first(k), pairs.second(k));
+    }
+  }
+  queue.size = 0;
+}
+
 template <class PairSource>
 SPACETREE_INLINE_INTO_CLONES void hybridDistancesOf(const PairSource& pairs, const HybridOptions& options,
                        TriangleDistanceResult* results, HybridStatistics* statistics) {
@@ -110,10 +191,15 @@ SPACETREE_INLINE_INTO_CLONES void hybridDistancesOf(const PairSource& pairs, con
   if (continuation > 0) stage1Options.tightGap = std::numeric_limits<double>::infinity();
   HybridStatistics counts;
   counts.pairs = count;
+  // The scale-aware path runs the whole (stage 1 + stage 2)-step schedule, with feature bounds.
+  const int clippedSteps = options.newtonIterations + continuation;
+  const double* clippedWeights = penaltyWeightSchedule(clippedSteps);
+  const double clipRatio = kClipSizeRatio * kClipSizeRatio;
 
   TrianglePairBatch batch;
   PenaltyBatchResult penalty;
   ContinuationQueue queue;
+  ClipQueue clipQueue;
   for (std::size_t begin = 0; begin < count; begin += kTrianglePairBatchSize) {
     const int lanes = pairs.loadBatch(batch, begin);
     penaltyTriangleDistanceBatch(batch, stage1Options, penalty);
@@ -126,6 +212,18 @@ SPACETREE_INLINE_INTO_CLONES void hybridDistancesOf(const PairSource& pairs, con
     for (int l = 0; l < lanes; ++l) {
       if (verdict[l] == 0) continue;
       const std::size_t k = begin + std::size_t(l);
+      // Very different triangle sizes: the clipped pair instead (LargeTriangleClip.h).
+      if (verdict[l] == 1 && options.clipLargeTriangles) {
+        const double a = penalty.longestSquaredEdge[0][l], b = penalty.longestSquaredEdge[1][l];
+        const int large = a > clipRatio * b ? 0 : (b > clipRatio * a ? 1 : -1);
+        if (large >= 0 &&
+            clipQueue.push(pairs.first(k), pairs.second(k), large, penalty.lengthScale[l], k)) {
+          if (clipQueue.size == kTrianglePairBatchSize)
+            runClipped(pairs, clipQueue, clippedWeights, clippedSteps, penaltyOptions, options,
+                       results, counts);
+          continue;
+        }
+      }
       if (verdict[l] == 1 && continuation > 0) {
         queue.push(batch, penalty, l, k);
         if (queue.size == kTrianglePairBatchSize)
@@ -139,6 +237,8 @@ SPACETREE_INLINE_INTO_CLONES void hybridDistancesOf(const PairSource& pairs, con
   }
   continueQueued(pairs, queue, continuationWeights, continuation, penaltyOptions, options,
                  results, counts);
+  runClipped(pairs, clipQueue, clippedWeights, clippedSteps, penaltyOptions, options, results,
+             counts);
   if (statistics) *statistics += counts;
 }
 

@@ -36,6 +36,12 @@ struct HybridOptions {
   // Default 5+4: the fastest combination measured (docs/triangle_distance.md); 0 gives the
   // single-stage hybrid.
   int continuationIterations = 4;
+  // Scale-aware path: a pair whose triangles differ in size by more than kClipSizeRatio and
+  // that stage 1 leaves uncertified is recomputed with the large triangle clipped to the small
+  // one's neighbourhood (same distance, LargeTriangleClip.h), from the centroids with all
+  // newtonIterations + continuationIterations steps, and certified by the same rule (with
+  // the original pair's h and the clip's vertex-face bounds); what still fails falls back.
+  bool clipLargeTriangles = true;
 };
 
 // Rounding slack of the contact band, relative to the pair's extent U + 2h. The bounds and the
@@ -49,6 +55,7 @@ struct HybridStatistics {
   std::size_t residualFallbacks = 0;     // certified gap above the tolerance
   std::size_t contactBandFallbacks = 0;  // accurate, but within rounding of the contact distance
   std::size_t continued = 0;             // pairs that ran stage 2 (two-stage hybrid only)
+  std::size_t clipped = 0;               // pairs that took the scale-aware path
 
   std::size_t fallbacks() const { return residualFallbacks + contactBandFallbacks; }
   double fallbackFraction() const { return pairs ? double(fallbacks()) / double(pairs) : 0.0; }
@@ -57,6 +64,7 @@ struct HybridStatistics {
     residualFallbacks += other.residualFallbacks;
     contactBandFallbacks += other.contactBandFallbacks;
     continued += other.continued;
+    clipped += other.clipped;
     return *this;
   }
 };

@@ -255,9 +255,13 @@ SPACETREE_INLINE_INTO_CLONES void runPenaltyBatch(const TrianglePairBatch& batch
     // Longest edge squared (the pair's length scale h), from the squared edges at hand.
     const double a3x = a2[0][l] - a1[0][l], a3y = a2[1][l] - a1[1][l], a3z = a2[2][l] - a1[2][l];
     const double b3x = b2[0][l] - b1[0][l], b3y = b2[1][l] - b1[1][l], b3z = b2[2][l] - b1[2][l];
-    longestSquared[l] =
-        larger(larger(larger(dot(a1, a1), dot(a2, a2)), a3x * a3x + a3y * a3y + a3z * a3z),
-               larger(larger(dot(b1, b1), dot(b2, b2)), b3x * b3x + b3y * b3y + b3z * b3z));
+    const double longestA =
+        larger(larger(dot(a1, a1), dot(a2, a2)), a3x * a3x + a3y * a3y + a3z * a3z);
+    const double longestB =
+        larger(larger(dot(b1, b1), dot(b2, b2)), b3x * b3x + b3y * b3y + b3z * b3z);
+    result.longestSquaredEdge[0][l] = longestA;
+    result.longestSquaredEdge[1][l] = longestB;
+    longestSquared[l] = larger(longestA, longestB);
     g11[l] = dot(a1, a1) * inverseScale;
     g12[l] = dot(a1, a2) * inverseScale;
     g13[l] = -dot(a1, b1) * inverseScale;

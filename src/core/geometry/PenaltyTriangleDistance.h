@@ -40,6 +40,9 @@ struct PenaltyBatchResult {
   alignas(64) double distance[kTrianglePairBatchSize];     // |pointOnFirst - pointOnSecond|
   alignas(64) double lowerBound[kTrianglePairBatchSize];   // >= 0, <= the true distance
   alignas(64) double lengthScale[kTrianglePairBatchSize];  // longest edge of the two triangles
+  // Longest squared edge of the first (0) and of the second (1) triangle: the size ratio the
+  // hybrid's scale-aware path tests (LargeTriangleClip.h).
+  alignas(64) double longestSquaredEdge[2][kTrianglePairBatchSize];
   alignas(64) double pointOnFirst[3][kTrianglePairBatchSize];
   alignas(64) double pointOnSecond[3][kTrianglePairBatchSize];
   // The last Newton iterate (u1, u2, v1, v2) before it is made admissible: the state a
