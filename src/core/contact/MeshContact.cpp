@@ -5,6 +5,7 @@
 #include <string>
 
 #include "geometry/PenaltyTriangleDistance.h"
+#include "geometry/PointTriangleDistance.h"
 
 namespace spacetree::contact {
 
@@ -121,6 +122,28 @@ Vector3d touchingNormal(const geometry::TriangleDistanceResult& r, const Triangl
   return firstNormal - secondNormal;
 }
 
+// Relative slack of the culls of step 3 beyond the bounding spheres: a cull drops a triangle
+// or pair only when it is farther than its reach by this fraction of the scales involved, far
+// above the rounding of the frame change and of the distances (~1e-16 of them).
+constexpr double kCullSlack = 1e-9;
+
+// Whether a sphere (centre p in `shape`'s body frame, radius reach) stays clear of the shape's
+// bounding box: then no point of the sphere is within reach of the shape's surface.
+bool clearOfBox(const Vector3d& p, const geometry::RigidShape& shape, double reach) {
+  const Vector3d below = (shape.boundingBoxLow - p).cwiseMax(0.0);
+  const Vector3d above = (p - shape.boundingBoxHigh).cwiseMax(0.0);
+  const double extent = (shape.boundingBoxHigh - shape.boundingBoxLow).norm();
+  const double limit = reach + kCullSlack * (reach + p.norm() + extent);
+  return (below + above).squaredNorm() > limit * limit;
+}
+
+// Whether triangle t (radius r about its centroid) stays farther than reach from point p: its
+// true distance, for triangles too large for their bounding sphere to say so.
+bool clearOfPoint(const Vector3d& p, const Triangle& t, double r, double reach) {
+  const double limit = reach + kCullSlack * (reach + r);
+  return geometry::pointTriangleSquaredDistance(p, t) > limit * limit;
+}
+
 double distanceToSegment(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
   const Vector3d e = b - a;
   const double ee = e.squaredNorm();
@@ -197,7 +220,9 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
   // frame, -rotation^T shift (rotation orthogonal to rounding; else the plain loop).
   const auto candidatesOf = [&](const geometry::RigidShape& shape, const Vector3d& q,
                                 double radius) -> const std::vector<int>* {
-    if (!options_.triangleIndex || shape.triangleCount() < kTriangleIndexMinimum ||
+    const bool indexed = shape.triangleCount() >= kTriangleIndexMinimum ||
+                         shape.boundingRadius > kTriangleIndexRadiusRatio * radius;
+    if (!options_.triangleIndex || !indexed ||
         shape.triangleIndex.size() != shape.triangleCount())
       return nullptr;
     candidates_.clear();
@@ -212,27 +237,48 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
     else
       for (std::size_t i = 0; i < shape.triangleCount(); ++i) body(i);
   };
+  // Culls beyond the bounding spheres (options_.triangleCulling): a triangle must also reach
+  // the other body's box, and a triangle larger than the other body must reach its bounding
+  // sphere by its true distance (a coarse obstacle's big faces).
+  const bool cull = options_.triangleCulling;
+  const Matrix3d inverseRotation = rotation.transpose();  // first frame -> second frame
+  const Vector3d firstCentreInSecond = -(inverseRotation * shift);
   nearFirst_.clear();
   nearSecond_.clear();
   forEachTriangle(first, candidatesOf(first, shift, second.boundingRadius + contactDistance),
                   [&](std::size_t i) {
-    const double reach = first.triangleRadii[i] + second.boundingRadius + contactDistance;
-    if ((first.triangleCentres[i] - shift).squaredNorm() < reach * reach) nearFirst_.push_back(int(i));
+    const double r = first.triangleRadii[i];
+    const double reach = r + second.boundingRadius + contactDistance;
+    const Vector3d& c = first.triangleCentres[i];
+    if (!((c - shift).squaredNorm() < reach * reach)) return;
+    if (cull) {
+      if (clearOfBox(inverseRotation * (c - shift), second, r + contactDistance)) return;
+      if (r > second.boundingRadius &&
+          clearOfPoint(shift, first.bodyTriangles[i], r, second.boundingRadius + contactDistance))
+        return;
+    }
+    nearFirst_.push_back(int(i));
   });
   secondCentres_.clear();
   const bool orthogonal =
       (rotation.transpose() * rotation - Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-12;
   const std::vector<int>* secondCandidates =
-      orthogonal ? candidatesOf(second, Vector3d(-(rotation.transpose() * shift)),
-                                first.boundingRadius + contactDistance)
+      orthogonal ? candidatesOf(second, firstCentreInSecond, first.boundingRadius + contactDistance)
                  : nullptr;
   forEachTriangle(second, secondCandidates, [&](std::size_t j) {
+    const double r = second.triangleRadii[j];
     const Vector3d centre = rotation * second.triangleCentres[j] + shift;
-    const double reach = second.triangleRadii[j] + first.boundingRadius + contactDistance;
-    if (centre.squaredNorm() < reach * reach) {
-      nearSecond_.push_back(int(j));
-      secondCentres_.push_back(centre);
+    const double reach = r + first.boundingRadius + contactDistance;
+    if (!(centre.squaredNorm() < reach * reach)) return;
+    if (cull) {
+      if (clearOfBox(centre, first, r + contactDistance)) return;
+      if (r > first.boundingRadius &&
+          clearOfPoint(firstCentreInSecond, second.bodyTriangles[j], r,
+                       first.boundingRadius + contactDistance))
+        return;
     }
+    nearSecond_.push_back(int(j));
+    secondCentres_.push_back(centre);
   });
   secondTriangles_.clear();
   for (int j : nearSecond_) {
@@ -245,14 +291,22 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
   pairIndex_.clear();
   for (int i : nearFirst_) {
     const Vector3d& centre = first.triangleCentres[std::size_t(i)];
-    const double radius = first.triangleRadii[std::size_t(i)] + contactDistance;
+    const double ri = first.triangleRadii[std::size_t(i)];
+    const Triangle& ti = first.bodyTriangles[std::size_t(i)];
     for (std::size_t k = 0; k < nearSecond_.size(); ++k) {
-      const double reach = radius + second.triangleRadii[std::size_t(nearSecond_[k])];
-      if ((centre - secondCentres_[k]).squaredNorm() < reach * reach) {
-        pairFirst_.push_back(first.bodyTriangles[std::size_t(i)]);
-        pairSecond_.push_back(secondTriangles_[k]);
-        pairIndex_.push_back({i, int(k)});
-      }
+      const double rk = second.triangleRadii[std::size_t(nearSecond_[k])];
+      const double reach = ri + rk + contactDistance;
+      if (!((centre - secondCentres_[k]).squaredNorm() < reach * reach)) continue;
+      // Triangles of very different sizes: the small one's sphere against the large one itself.
+      if (cull && ri > kTriangleCullSizeRatio * rk &&
+          clearOfPoint(secondCentres_[k], ti, ri, rk + contactDistance))
+        continue;
+      if (cull && rk > kTriangleCullSizeRatio * ri &&
+          clearOfPoint(centre, secondTriangles_[k], rk, ri + contactDistance))
+        continue;
+      pairFirst_.push_back(ti);
+      pairSecond_.push_back(secondTriangles_[k]);
+      pairIndex_.push_back({i, int(k)});
     }
   }
   const std::size_t pairs = pairFirst_.size();

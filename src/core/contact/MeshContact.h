@@ -22,13 +22,19 @@
 //
 // Pipeline per body pair: (1) bounding spheres (radius about the centre of mass) farther apart
 // than 2 eps: no contact; (2) optional approach precheck hook (e.g. bodies separating fast
-// enough to stay apart) may skip the pair; (3) triangle pruning by bounding spheres: a triangle
-// of one body is kept only if its sphere reaches within 2 eps of the other body's bounding
-// sphere, and a pair of kept triangles only if their spheres are within 2 eps (for a shape of
-// at least kTriangleIndexMinimum triangles the candidates come from its TriangleBvh, queried
-// with the other body's bounding sphere in this shape's frame, and pass the same test as in
-// the loop over all triangles, in ascending order: the same set, the same contacts, bit for
-// bit); (4) the
+// enough to stay apart) may skip the pair; (3) triangle pruning: a triangle of one body is
+// kept only if its bounding sphere reaches within 2 eps of the other body's bounding sphere
+// and of its bounding box (body frame), and, when the triangle is larger than the other body,
+// if the triangle itself comes within that body's bounding radius + 2 eps of its centre; a
+// pair of kept triangles only if their spheres are within 2 eps and, for radii more than
+// kTriangleCullSizeRatio apart, the small triangle's sphere comes within 2 eps of the large
+// triangle itself. Every test is conservative (a surface point within 2 eps of the other
+// surface passes all of them), so no contact is lost: a coarse obstacle's big triangles meet
+// only the grain triangles that face them. For an indexed shape (kTriangleIndexMinimum
+// triangles, or kTriangleIndexRadiusRatio times the other body) the candidates come from
+// its TriangleBvh, queried with the other body's bounding sphere in this shape's frame, and
+// pass the same tests as in the loop over all triangles, in ascending order: the same set,
+// the same contacts, bit for bit; (4) the
 // surviving triangle pairs go to the chosen distance method in one batch (Exact:
 // triangleDistance; Penalty: the batched penalty-Newton kernel, uncertified; Hybrid: penalty
 // with certified fallback, contact decisions identical to Exact's; by default two-stage:
@@ -85,9 +91,15 @@ constexpr double kDirectionTolerance = 1e-9;
 // Slope (sine) above which a neighbour triangle is taken to descend towards the other body.
 constexpr double kFeatureTolerance = 1e-7;
 
-// Shapes with at least this many triangles are pruned through their TriangleBvh, smaller ones
-// by the loop over all triangles (a choice, not tuned; the result is the same either way).
+// Shapes with at least this many triangles, or whose bounding radius exceeds this many times
+// the query radius (the other body's bounding radius + 2 eps: an obstacle of few large
+// triangles against a grain), are pruned through their TriangleBvh, the others by the loop
+// over all triangles (a choice, not tuned; the result is the same either way).
 constexpr std::size_t kTriangleIndexMinimum = 64;
+constexpr double kTriangleIndexRadiusRatio = 4.0;
+// A triangle pair whose bounding radii differ more than this is also tested by the small
+// triangle's sphere against the large triangle itself (step 3).
+constexpr double kTriangleCullSizeRatio = 2.0;
 
 struct MeshContactOptions {
   double epsilon = 0.0;  // halo depth; contact when the triangle distance < 2 epsilon
@@ -105,6 +117,10 @@ struct MeshContactOptions {
   // Prune through the shapes' TriangleBvh (step 3); false: loop over all triangles (the
   // reference the index is tested against; same contacts either way).
   bool triangleIndex = true;
+  // Step 3's culls beyond the bounding spheres (the other body's box, true distances of large
+  // triangles); false: bounding spheres only (the reference the culls are tested against;
+  // same contacts either way).
+  bool triangleCulling = true;
   // Optional hook after the bounding-sphere check: gets both poses and the gap between the
   // bounding spheres (centre distance - radii, may be negative); return false to skip the pair.
   // Only pairs that cannot have a contact now may be skipped: a pair in halo contact that is

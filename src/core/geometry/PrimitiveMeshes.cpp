@@ -1,6 +1,8 @@
 #include "geometry/PrimitiveMeshes.h"
 
+#include <array>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 namespace spacetree::geometry {
@@ -35,6 +37,41 @@ TriangleMesh boxMesh(const Eigen::Vector3d& size) {
       Eigen::Vector3d outward = Eigen::Vector3d::Zero();
       outward[axis] = side ? 1.0 : -1.0;
       addQuad(mesh, base, base + u, base + u + v, base + v, outward);
+    }
+  }
+  return mesh;
+}
+
+TriangleMesh gridBoxMesh(const Eigen::Vector3d& size, const Eigen::Vector3i& cells) {
+  if (!(size.minCoeff() > 0.0)) throw std::invalid_argument("gridBoxMesh: edge lengths must be > 0");
+  if (cells.minCoeff() < 1) throw std::invalid_argument("gridBoxMesh: cell counts must be >= 1");
+  TriangleMesh mesh;
+  // One vertex per lattice point (i, j, k) on the box surface, shared by the faces meeting there.
+  std::map<std::array<int, 3>, int> index;
+  const auto vertex = [&](std::array<int, 3> p) {
+    const auto found = index.find(p);
+    if (found != index.end()) return found->second;
+    Eigen::Vector3d x;
+    for (int c = 0; c < 3; ++c) x[c] = size[c] * (double(p[c]) / cells[c] - 0.5);
+    mesh.vertices.push_back(x);
+    return index[p] = int(mesh.vertices.size()) - 1;
+  };
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (int side = 0; side < 2; ++side) {
+      Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+      outward[axis] = side ? 1.0 : -1.0;
+      for (int i = 0; i < cells[u]; ++i)
+        for (int j = 0; j < cells[v]; ++j) {
+          const auto at = [&](int a, int b) {
+            std::array<int, 3> p{};
+            p[axis] = side ? cells[axis] : 0;
+            p[u] = a;
+            p[v] = b;
+            return vertex(p);
+          };
+          addQuad(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), outward);
+        }
     }
   }
   return mesh;

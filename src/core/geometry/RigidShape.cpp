@@ -1,6 +1,7 @@
 #include "geometry/RigidShape.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 
@@ -25,9 +26,15 @@ RigidShape RigidShape::fromMesh(const TriangleMesh& mesh) {
   shape.bodyTriangles = shape.bodyMesh.triangleSoup();
   shape.minimumEdgeLength = shape.bodyMesh.minimumEdgeLength();
 
+  shape.boundingBoxLow = Eigen::Vector3d::Constant(INFINITY);
+  shape.boundingBoxHigh = Eigen::Vector3d::Constant(-INFINITY);
   for (const auto& f : shape.bodyMesh.triangles)
-    for (int v : f)
-      shape.boundingRadius = std::max(shape.boundingRadius, shape.bodyMesh.vertices[v].norm());
+    for (int v : f) {
+      const Eigen::Vector3d& x = shape.bodyMesh.vertices[v];
+      shape.boundingRadius = std::max(shape.boundingRadius, x.norm());
+      shape.boundingBoxLow = shape.boundingBoxLow.cwiseMin(x);
+      shape.boundingBoxHigh = shape.boundingBoxHigh.cwiseMax(x);
+    }
   shape.triangleCentres.reserve(shape.bodyTriangles.size());
   shape.triangleRadii.reserve(shape.bodyTriangles.size());
   for (const Triangle& t : shape.bodyTriangles) {

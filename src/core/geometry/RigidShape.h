@@ -41,6 +41,10 @@ struct RigidShape {
   std::vector<int> vertexNeighbours;
 
   double boundingRadius = 0.0;       // max |vertex| (about the centre of mass)
+  // Axis-aligned box of the vertices in the body frame (an oriented box in the world): the
+  // contact search drops the other body's triangles that stay 2 eps away from it.
+  Eigen::Vector3d boundingBoxLow = Eigen::Vector3d::Zero();
+  Eigen::Vector3d boundingBoxHigh = Eigen::Vector3d::Zero();
   double minimumEdgeLength = 0.0;    // the contact de-duplication length of the paper (§3)
   double volume = 0.0;
   Eigen::Vector3d principalInertiaPerUnitDensity = Eigen::Vector3d::Zero();  // ascending
