@@ -1,6 +1,7 @@
 # fix spacetree (regular / adaptive / reluctant grids) and compute treestats: pair sets equal
 # bin's on the polydisperse decks and on a randomised moving gas (1 and 2 ranks), the paper's
-# §7.1 two-sphere deck (comparisons, cells, leaf-cell VTK), bad input.
+# §7.1 two-sphere deck (comparisons, cells, leaf-cell VTK), an empty box filled by insertion
+# (in.treestats_empty), bad input.
 # Driver: check_adaptive_grid.py (reuses compare_runs.py); decks in.grid_pairs, in.bad_grid.
 # Run:  ctest --test-dir build -R liggghts.grid
 
@@ -21,6 +22,8 @@ endforeach()
 grid_test("moving:1" 150 1)
 grid_test("moving:2" 180 2)
 grid_test("paper71" 120 1)
+grid_test("empty:1" 60 1)
+grid_test("empty:2" 90 2)
 foreach(bad gridtype gridmissing keyword novalue threshold maxlevel noneighbor treestats)
   grid_test("bad:${bad}" 60 1)
 endforeach()

@@ -17,6 +17,10 @@ TEST is one of (see `check_adaptive_grid.py list`):
                    pair only shortly before impact (<= 8 comparisons per step); reluctant compares
                    it over more steps but uses fewer cells than adaptive, which uses far fewer
                    than regular
+  empty:NP         compute treestats in thermo output of a box that is empty at setup and filled
+                   by fix insert/pack during the run (in.treestats_empty), every grid type, NP
+                   ranks: the run completes, step 0 reports zeros, after the insertion the real
+                   particles equal the atom count and the sweep compares pairs
   bad:NAME         bad input stops with a non-zero exit code and a clear ERROR (BAD_INPUT)
 
 Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.  Reuses compare_runs.py's runner,
@@ -182,6 +186,24 @@ def test_paper71(R):
     print("  PASS")
 
 
+def test_empty(R, np):
+    for grid in GRIDS:
+        rc, text = R.run("in.treestats_empty", "empty_%s_np%d" % (grid, np), np,
+                         {"grid": grid, "np": str(np)})
+        th = thermo_columns(text)
+        first = {c: th[c][0] for c in ("Atoms", "ts[1]", "ts[5]", "ts[8]")}
+        last = {c: th[c][-1] for c in ("Atoms", "ts[1]", "ts[5]", "ts[8]")}
+        print("  %-9s step 0: %s; step %d: %s" % (grid, first, int(th["Step"][-1]), last))
+        if any(v != 0 for v in first.values()):
+            raise cr.Fail("%s: the empty box should report zeros at step 0, got %s" % (grid, first))
+        if last["Atoms"] != 50 or last["ts[8]"] != last["Atoms"]:
+            raise cr.Fail("%s: after insertion treestats counts %s real particles for %s atoms"
+                          % (grid, last["ts[8]"], last["Atoms"]))
+        if not (last["ts[1]"] > 0 and last["ts[5]"] > 0):
+            raise cr.Fail("%s: no comparisons or cells after the insertion" % grid)
+    print("  PASS")
+
+
 def test_bad(R, name):
     fixargs, extra, regex = BAD_INPUT[name]
     v = dict(extra, data=R.gen("bad.data", BAD_DATA), fixargs=fixargs)
@@ -200,7 +222,7 @@ def test_bad(R, name):
 
 def list_tests():
     t = ["pairs:%s:%d" % (c, n) for c in PAIR_CASE_NAMES for n in (1, 2)]
-    t += ["moving:1", "moving:2", "paper71"] + ["bad:%s" % n for n in BAD_INPUT]
+    t += ["moving:1", "moving:2", "paper71", "empty:1", "empty:2"] + ["bad:%s" % n for n in BAD_INPUT]
     return t
 
 
@@ -211,6 +233,8 @@ def dispatch(R, parts):
         test_moving(R, int(parts[1]))
     elif parts == ["paper71"]:
         test_paper71(R)
+    elif parts[0] == "empty" and len(parts) == 2 and parts[1] in ("1", "2"):
+        test_empty(R, int(parts[1]))
     elif parts[0] == "bad" and len(parts) == 2 and parts[1] in BAD_INPUT:
         test_bad(R, parts[1])
     else:

@@ -210,6 +210,23 @@ TEST(AdaptiveGrid, CoarsensOnceParticlesLeaveARegion) {
   }
 }
 
+TEST(AdaptiveGrid, EmptyGridReportsLevelZeroWithoutVertices) {
+  // Before any particle (an empty box at setup, before insertion) and after an update without
+  // particles: per-level counts exist for every level the statistics list.
+  for (GridType type : {GridType::Regular, GridType::Adaptive, GridType::Reluctant}) {
+    AdaptiveGridOptions options;
+    options.type = type;
+    AdaptiveGrid grid(options);
+    for (int pass = 0; pass < 2; ++pass) {
+      const std::vector<std::uint64_t> vertices = grid.verticesPerLevel();
+      ASSERT_EQ(vertices.size(), grid.statistics().levels.size());
+      for (std::uint64_t v : vertices) EXPECT_EQ(v, 0u);
+      EXPECT_EQ(grid.leafCellCount(), 0u);
+      grid.update(nullptr, nullptr, nullptr, 0);
+    }
+  }
+}
+
 TEST(AdaptiveGrid, BadOptionsThrow) {
   AdaptiveGridOptions options;
   options.shock = 4;

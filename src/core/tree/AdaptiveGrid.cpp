@@ -679,7 +679,11 @@ void AdaptiveGrid::buildSpacetree(Spacetree& tree, const double (*x)[3], const d
 std::vector<std::uint64_t> AdaptiveGrid::verticesPerLevel() const {
   // Non-hanging vertices (all 2^d adjacent cells exist). Costs up to 64 hanging tests per
   // refined cell, so it is counted on request (output), not in every update.
-  std::vector<std::uint64_t> count(haveGeometry_ ? std::size_t(geometry_.depth) + 1 : 0, 0);
+  // One entry per level of statistics().levels, also before the grid has a cube (no particle
+  // yet, e.g. an empty box before insertion: no vertices).
+  std::vector<std::uint64_t> count(
+      haveGeometry_ ? std::size_t(geometry_.depth) + 1 : stats_.levels.size(), 0);
+  if (!haveGeometry_) return count;
   for (int l = 0; l < int(count.size()); ++l) {
     if (l <= regularDepth_) {
       const std::uint64_t c = std::uint64_t(cellsPerAxis(l));

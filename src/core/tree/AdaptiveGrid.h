@@ -92,7 +92,8 @@ class AdaptiveGrid {
   template <class F>
   void forEachLeafCell(F&& f) const;
   std::uint64_t leafCellCount() const;
-  // Non-hanging vertices per level (index = level); computed on request, not per update.
+  // Non-hanging vertices per level (index = level, as statistics().levels); computed on
+  // request, not per update.
   std::vector<std::uint64_t> verticesPerLevel() const;
 
   // Restart: everything the grid keeps between updates that changes later updates (options,
