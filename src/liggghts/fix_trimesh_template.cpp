@@ -15,6 +15,8 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "fix_template_sphere.h"
+#include "fix_template_trimesh.h"
 #include "fix_trimesh_state.h"
 #include "force.h"
 #include "modify.h"
@@ -150,7 +152,53 @@ void FixTrimeshTemplate::init()
   int ifix = modify->find_fix((std::string(id) + "_state").c_str());
   state_ = ifix >= 0 ? dynamic_cast<FixTrimeshState*>(modify->fix[ifix]) : NULL;
   if (!state_) error->all(FLERR,"Fix trimesh/template: its fix trimesh/state was deleted");
+  check_insertion_templates();
   apply_to_atoms(false);
+}
+
+void FixTrimeshTemplate::check_insertion_templates()
+{
+  // Spheres inserted for a template type: the insertion's overlap check is conservative only
+  // when the sphere covers the grain (bounding radius + eps); particletemplate/trimesh makes
+  // exactly that sphere with the grain's mass, particletemplate/sphere is checked.
+  char msg[1024];
+  for (int i = 0; i < modify->nfix; i++) {
+    Fix *f = modify->fix[i];
+    const bool sphere = strcmp(f->style,"particletemplate/sphere") == 0;
+    const bool grain = strcmp(f->style,"particletemplate/trimesh") == 0;
+    if (!sphere && !grain) continue;
+    FixTemplateSphere *pt = static_cast<FixTemplateSphere *>(f);
+    for (int t = pt->mintype(); t <= pt->maxtype(); t++) {
+      const TrimeshTypeTemplate *tt = type_template(t);
+      if (!tt) continue;
+      const double need = tt->boundingRadius + halo_;
+      if (grain) {
+        if (std::abs(static_cast<FixTemplateTrimesh *>(f)->insertion_radius() - need) > 1e-12 * need) {
+          snprintf(msg,sizeof(msg),"Fix particletemplate/trimesh %s: pair_style trimesh eps changed "
+                   "after it was defined (insertion radius %g m, grain bounding radius + eps %g m): "
+                   "define it again after the pair style",f->id,
+                   static_cast<FixTemplateTrimesh *>(f)->insertion_radius(),need);
+          error->all(FLERR,msg);
+        }
+        continue;
+      }
+      if (pt->min_rad() < need * (1.0 - 1e-12)) {
+        snprintf(msg,sizeof(msg),"Fix particletemplate/sphere %s inserts atom type %d (a grain of fix "
+                 "trimesh/template %s) with radius %g m, below the grain's bounding radius + eps %g m: "
+                 "the insertion would place grains overlapping each other. Use fix "
+                 "particletemplate/trimesh (the grain's bounding sphere and mass) or radius >= %g",
+                 f->id,t,id,pt->min_rad(),need,need);
+        error->all(FLERR,msg);
+      }
+      if (comm->me == 0 && std::abs(pt->massexpect() - tt->mass) > 1e-9 * tt->mass) {
+        snprintf(msg,sizeof(msg),"Fix particletemplate/sphere %s inserts grains of type %d as spheres "
+                 "of mass %g kg: insertion by mass and its INFO lines count that, not the grain's "
+                 "%g kg (fix particletemplate/trimesh counts the grain's)",f->id,t,pt->massexpect(),
+                 tt->mass);
+        error->warning(FLERR,msg);
+      }
+    }
+  }
 }
 
 void FixTrimeshTemplate::setup_pre_exchange()

@@ -10,8 +10,9 @@
    pair_style trimesh), rmass = RHO * volume and, if not yet set, an orientation. Grains are
    kept in their principal body frame (atom position = centre of mass); a `fixed` type is an
    obstacle of infinite mass whose mesh stays in file coordinates (atom position = file origin).
-   Atoms inserted during a run (fix insert/pack, insert/stream, ...) get their template before the next neighbour
-   list build (pre_neighbor, ghosts refreshed too).
+   Atoms inserted during a run (fix insert/pack, insert/stream, ...; particle template
+   particletemplate/trimesh) get their template before the next neighbour list build
+   (pre_neighbor, ghosts refreshed too).
    Per-atom orientation and angular momentum live in the fix trimesh/state "<ID>_state". */
 
 #ifdef FIX_CLASS
@@ -59,6 +60,10 @@ class FixTrimeshTemplate : public Fix {
   void apply_to_atoms(bool initialise_poses);
 
  private:
+  // Insertion templates for template types (particletemplate/sphere, .../trimesh): the
+  // inserted sphere must cover the grain; errors and warnings name the fix.
+  void check_insertion_templates();
+
   std::vector<std::unique_ptr<TrimeshTypeTemplate>> templates_;   // index = type
   class FixTrimeshState *state_;
   double halo_;

@@ -11,7 +11,9 @@ Cases (each prints PASS/FAIL lines; exit status 0 = all passed):
   floor     dented sphere on a fixed floor: comes to rest (kinetic energy < 1e-12 J), the surface
             never sinks more than eps below the floor, contacts stay
   edge      a tilted cube dropped on its edge turns the right way and ends flat on a face
-  insert    grains from fix insert/pack get their templates (1 and 2 ranks) and land on a floor
+  insert    grains from fix insert/pack get their templates (1 and 2 ranks) and land on a floor;
+            particletemplate/trimesh inserts the grain's bounding sphere with its mass (INFO
+            line), a too small particletemplate/sphere is refused
   ranks     six spinning particles crossing the rank boundary: 1 and 2 ranks give the same surfaces
   restart   write_restart / read_restart half way = one uninterrupted run
   bad       bad input stops with a clear ERROR; the printed Newton-step schedule (defaults,
@@ -252,33 +254,61 @@ def case_edge(a):
           % (z[0], z[3], z[4], z[7]))
 
 
+GRAIN_MASS = 1.2269e-4     # the deck's dented sphere, 2500 kg/m^3
+GRAIN_REACH = 0.0030098    # its bounding radius + eps
+
+
 def case_insert(a):
     """Grains inserted by fix insert/pack get their template (radius = bounding radius + eps,
-    template mass, orientation) before the next list build, on 1 and 2 ranks, and land on the floor."""
+    template mass, orientation) before the next list build, on 1 and 2 ranks, and land on the
+    floor; the insertion template is the grain's (particletemplate/trimesh: its bounding sphere,
+    the INFO line counts the grains' mass) or a sphere large enough (a warning names the mass it
+    counts); a sphere smaller than the grain is refused."""
     wd = a.workdir
-    write_stl(os.path.join(wd, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
     n = 4000
-    for np_ in (1, 2):
-        sub = os.path.join(wd, "np%d" % np_)
+    for np_, rsphere in ((1, 0), (2, 0), (1, 0.0031)):
+        what = "insert: %d rank(s), %s" % (np_, "particletemplate/sphere" if rsphere else "particletemplate/trimesh")
+        sub = os.path.join(wd, "np%d_%s" % (np_, "sphere" if rsphere else "trimesh"))
         os.makedirs(sub, exist_ok=True)
         write_stl(os.path.join(sub, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
-        rc, out, log = run(a, "trimesh_insert.in", sub, "insert", dict(n=n, np=np_), np_=np_)
-        check(rc == 0 and "inserted 20 particle templates" in out, "insert: %d rank(s): 20 grains inserted" % np_)
-        if rc != 0:
+        rc, out, log = run(a, "trimesh_insert.in", sub, "insert", dict(n=n, np=np_, rsphere=rsphere), np_=np_)
+        m = re.search(r"inserted (\d+) particle templates \(mass ([0-9.eE+-]+)\)", out)
+        check(rc == 0 and m and int(m.group(1)) == 20, "%s: 20 grains inserted" % what)
+        if rc != 0 or not m:
             return
         t = thermo(log)
         t = t[1:]   # step 0: before the insertion
-        check((t[:, 1] == 21).all(), "insert: %d rank(s): no grain lost (21 atoms with the floor)" % np_)
+        check((t[:, 1] == 21).all(), "%s: no grain lost (21 atoms with the floor)" % what)
         rmax, mmin = t[:, 4].max(), t[:, 5].min()
-        check(0.0025 < rmax < 0.0031 and abs(mmin - 1.2269e-4) < 1e-7,
-              "insert: %d rank(s): radius = template bounding radius + eps (%.6g < sphere template 0.0031),"
-              " mass = template mass %.6g kg" % (np_, rmax, mmin))
+        check(abs(rmax - GRAIN_REACH) < 1e-7 and abs(mmin - GRAIN_MASS) < 1e-7,
+              "%s: radius = template bounding radius + eps (%.6g), mass = template mass %.6g kg"
+              % (what, rmax, mmin))
+        info = float(m.group(2))
+        if rsphere:
+            sphere_mass = 2500 * 4 / 3 * math.pi * rsphere ** 3
+            check(abs(info - 20 * sphere_mass) < 1e-3 * info and
+                  re.search(r"WARNING: Fix particletemplate/sphere pts1 inserts grains of type 1 as spheres", out),
+                  "%s: the INFO line counts the spheres' mass (%.6g kg), and a warning says so" % (what, info))
+        else:
+            check(abs(info - 20 * mmin) < 1e-6 * info,
+                  "%s: the INFO line reports the grains' mass %.7g kg = 20 x %.7g kg" % (what, info, mmin))
         check(t[:, 2].max() >= 1 and t[:, 3].max() < 5e-5,
               "insert: %d rank(s): grains reach the floor (max contacts %d), penetration %.3g < eps"
               % (np_, t[:, 2].max(), t[:, 3].max()))
         pts, cells, ids = read_vtk(os.path.join(sub, "insert_%d.vtk" % n))
         check(np.isfinite(pts).all() and len(np.unique(ids)) == 21 and pts[:, 2].min() > -0.0101,
-              "insert: %d rank(s): 21 finite surfaces in the last frame" % np_)
+              "%s: 21 finite surfaces in the last frame" % what)
+    # A sphere template smaller than the grain's bounding sphere: refused, naming the fix and
+    # the radius needed (it would insert overlapping grains).
+    sub = os.path.join(wd, "small")
+    os.makedirs(sub, exist_ok=True)
+    write_stl(os.path.join(sub, "floor.stl"), box_triangles((-0.025, -0.025, -0.01), (0.025, 0.025, 0.0)))
+    rc, out, log = run(a, "trimesh_insert.in", sub, "insert", dict(n=n, np=1, rsphere=0.0025), expect_fail=True)
+    m = re.search(r"ERROR: Fix particletemplate/sphere pts1 inserts atom type 1 .* radius 0.0025 m, below the "
+                  r"grain's bounding radius \+ eps 0.00300\d* m", out)
+    check(rc != 0 and m and "inserted" not in out,
+          "insert: a sphere template smaller than the grain is an error before any insertion (%s)"
+          % (m.group(0)[:90] if m else out[-300:]))
 
 
 def case_ranks(a):
@@ -354,6 +384,14 @@ BAD = {
                   r"ERROR.*open\.stl.*open surface"),
     "atom_style": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7",
                    r"ERROR.*requires atom_style sphere or granular"),
+    "insertion_template_order": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                                 "fix pts all particletemplate/trimesh 15485863 atom_type 1",
+                                 r"ERROR.*particletemplate/trimesh needs pair_style trimesh defined before it"),
+    "insertion_template_type": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7 "
+                                "type 2 file cube.stl fixed\n"
+                                "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10\n"
+                                "fix pts all particletemplate/trimesh 15485863 atom_type 2",
+                                r"ERROR.*particletemplate/trimesh: atom type 2 is a fixed obstacle"),
 }
 
 
@@ -361,12 +399,13 @@ def case_bad(a):
     wd = a.workdir
     tris = box_triangles((0, 0, 0), (1, 1, 1))[:-1]
     write_stl(os.path.join(wd, "open.stl"), tris)
+    write_stl(os.path.join(wd, "cube.stl"), box_triangles((0.1, 0.1, 0.1), (0.9, 0.9, 0.9)))
     for name, (lines, rx) in BAD.items():
         style = "atomic" if name == "atom_style" else "granular"
         deck = os.path.join(wd, "in." + name)
         with open(deck, "w") as f:
             f.write("atom_style %s\nboundary f f f\nnewton off\ncommunicate single vel yes\nunits si\n"
-                    "region box block 0 1 0 1 0 1\ncreate_box 1 box\n%s\n" % (style, lines))
+                    "region box block 0 1 0 1 0 1\ncreate_box 2 box\n%s\n" % (style, lines))
         p = subprocess.run([a.exe, "-in", deck, "-echo", "none", "-log", "none"], cwd=wd,
                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace",
                            timeout=60)
