@@ -12,13 +12,17 @@
 using namespace LAMMPS_NS;
 
 FixTrimeshState::FixTrimeshState(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), quat(NULL), angmom(NULL), with_shape_(false)
+  Fix(lmp, narg, arg), quat(NULL), angmom(NULL), values_(NULL), with_shape_(false)
 {
   if (narg != 3) error->all(FLERR,"Illegal fix trimesh/state command: it takes no arguments");
   restart_peratom = 1;
   create_attribute = 1;
   comm_forward = 6;   // the largest forward comm (forward_shapes)
   comm_border = 4;
+  // f_ID[1..7] in dump custom, compute reduce, variables: always current (peratom_freq 1)
+  peratom_flag = 1;
+  size_peratom_cols = 7;
+  peratom_freq = 1;
 
   grow_arrays(atom->nmax);
   atom->add_callback(0);   // grow + exchange
@@ -36,14 +40,33 @@ FixTrimeshState::~FixTrimeshState()
   atom->delete_callback(id,0);
   atom->delete_callback(id,1);
   atom->delete_callback(id,2);
-  memory->destroy(quat);
-  memory->destroy(angmom);
+  // Atom's destructor frees atom->quaternion: it must not see ours
+  if (atom->quaternion == quat) atom->quaternion = NULL;
+  memory->destroy(values_);
+  memory->sfree(quat);
+  memory->sfree(angmom);
 }
 
 void FixTrimeshState::grow_arrays(int nmax)
 {
-  memory->grow(quat,nmax,4,"trimesh/state:quat");
-  memory->grow(angmom,nmax,3,"trimesh/state:angmom");
+  memory->grow(values_,nmax,7,"trimesh/state:values");
+  array_atom = values_;
+  point_rows(values_ ? nmax : 0);
+}
+
+void FixTrimeshState::point_rows(int nmax)
+{
+  // quat / angmom are row pointers into values_ (re-pointed whenever values_ moves)
+  double **old = quat;
+  const bigint bytes = sizeof(double *) * static_cast<bigint>(nmax > 0 ? nmax : 1);
+  quat = static_cast<double **>(memory->srealloc(quat,bytes,"trimesh/state:quat"));
+  angmom = static_cast<double **>(memory->srealloc(angmom,bytes,"trimesh/state:angmom"));
+  for (int i = 0; i < nmax; i++) {
+    quat[i] = values_[i];
+    angmom[i] = values_[i] + 4;
+  }
+  // dump custom quat1..quat4 read atom->quaternion (patch 0003); another style's is left alone
+  if (atom->quaternion == NULL || atom->quaternion == old) atom->quaternion = quat;
 }
 
 void FixTrimeshState::copy_arrays(int i, int j, int)
@@ -146,5 +169,5 @@ void FixTrimeshState::unpack_restart(int nlocal, int nth)
 
 double FixTrimeshState::memory_usage()
 {
-  return 7.0 * sizeof(double) * atom->nmax;
+  return (7.0 * sizeof(double) + 2.0 * sizeof(double *)) * atom->nmax;
 }

@@ -1,9 +1,12 @@
 /* spacetree-dem: per-atom state of triangulated rigid particles, kept next to atom_style
    sphere/granular (x, v, f, radius = bounding radius + eps, rmass, omega, torque):
      quat[i][4]   orientation body -> world (unit quaternion w,x,y,z); all zero = not yet set
-     angmom[i][3] angular momentum in the world frame
+     angmom[i][3] angular momentum in the world frame (kg m^2/s)
    The shape of atom i is the template of its type (fix trimesh/template).
-   Created by fix trimesh/template as fix "<template-ID>_state"; never named in a deck.
+   Created by fix trimesh/template as fix "<template-ID>_state"; never defined in a deck, but
+   read there as a per-atom array of 7 columns (f_<template-ID>_state[1..7] = quat w x y z,
+   angmom x y z: dump custom, compute reduce, variables), and as atom->quaternion (dump custom
+   quat1..quat4).
    The values follow atoms across ranks (exchange), reach ghosts (border + forward comm of
    quat, called by the pair style each step) and are written to restart files. */
 
@@ -46,10 +49,13 @@ class FixTrimeshState : public Fix {
   /* Refresh orientation, radius and rmass of the ghosts (after owners got their template). */
   void forward_shapes();
 
-  double **quat;
-  double **angmom;
+  double **quat;     // rows of values_: columns 0..3
+  double **angmom;   // rows of values_: columns 4..6
 
  private:
+  void point_rows(int nmax);
+
+  double **values_;   // nmax x 7, the per-atom array of the fix (array_atom)
   bool with_shape_;   // forward comm: quat only, or quat + radius + rmass
 };
 

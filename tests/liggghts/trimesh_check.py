@@ -14,6 +14,8 @@ Cases (each prints PASS/FAIL lines; exit status 0 = all passed):
   insert    grains from fix insert/pack get their templates (1 and 2 ranks) and land on a floor;
             particletemplate/trimesh inserts the grain's bounding sphere with its mass (INFO
             line), a too small particletemplate/sphere is refused
+  pose      dump custom quat1..quat4 and f_ID_state[1..7] of freely spinning box grains: the known
+            rotation and angular momentum (1 and 2 ranks)
   ranks     six spinning particles crossing the rank boundary: 1 and 2 ranks give the same surfaces
   restart   write_restart / read_restart half way = one uninterrupted run
   bad       bad input stops with a clear ERROR; the printed Newton-step schedule (defaults,
@@ -311,6 +313,63 @@ def case_insert(a):
           % (m.group(0)[:90] if m else out[-300:]))
 
 
+def read_custom_dump(path):
+    """dump custom file -> list of (step, {column: array}) (rows sorted by id)."""
+    frames, lines = [], open(path).read().split("\n")
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith("ITEM: TIMESTEP"):
+            step = int(lines[i + 1])
+            n = int(lines[i + 3])
+            cols = lines[i + 8].split()[2:]
+            rows = np.array([[float(v) for v in l.split()] for l in lines[i + 9:i + 9 + n]])
+            rows = rows[np.argsort(rows[:, 0])]
+            frames.append((step, {c: rows[:, k] for k, c in enumerate(cols)}))
+            i += 9 + n
+        else:
+            i += 1
+    return frames
+
+
+def case_pose(a):
+    """dump custom quat1..quat4 and f_<template>_state[1..7] of two box grains spinning freely
+    about principal axes (1 and 2 ranks): the quaternion is the known rotation, exp(w t / 2 e),
+    over several turns, and the angular momentum is I w with the box's closed-form moments."""
+    wd = a.workdir
+    write_stl(os.path.join(wd, "box.stl"), box_triangles((-0.003, -0.002, -0.001), (0.003, 0.002, 0.001)))
+    n, every, dt, w1, w2 = 20000, 1000, 1e-5, 50.0, -30.0
+    mass = 2000 * 6e-3 * 4e-3 * 2e-3
+    i_long = mass * (4e-3 ** 2 + 2e-3 ** 2) / 12     # about x, the 6 mm side (smallest moment)
+    i_short = mass * (6e-3 ** 2 + 4e-3 ** 2) / 12    # about z, the 2 mm side (largest moment)
+    for np_ in (1, 2):
+        sub = os.path.join(wd, "np%d" % np_)
+        os.makedirs(sub, exist_ok=True)
+        write_stl(os.path.join(sub, "box.stl"), box_triangles((-0.003, -0.002, -0.001), (0.003, 0.002, 0.001)))
+        rc, out, log = run(a, "trimesh_pose.in", sub, "pose", dict(n=n, every=every, w1=w1, w2=w2), np_=np_)
+        check(rc == 0, "pose: %d rank(s): dump custom quat1..4 and f_shapes_state[1..7] run" % np_)
+        if rc != 0:
+            return
+        frames = read_custom_dump(os.path.join(sub, "pose.dump"))
+        quat_err = state_err = angmom_err = 0.0
+        for step, c in frames:
+            t = step * dt
+            q = np.array([c["quat%d" % k] for k in (1, 2, 3, 4)]).T
+            want = np.array([[math.cos(w1 * t / 2), 0, 0, math.sin(w1 * t / 2)],
+                             [math.cos(w2 * t / 2), math.sin(w2 * t / 2), 0, 0]])
+            quat_err = max(quat_err, np.abs(q - want).max())
+            f = np.array([c["f_shapes_state[%d]" % k] for k in range(1, 8)]).T
+            state_err = max(state_err, np.abs(f[:, :4] - q).max())
+            L = np.array([[0, 0, i_short * w1], [i_long * w2, 0, 0]])
+            angmom_err = max(angmom_err, np.abs(f[:, 4:] - L).max() / np.abs(L).max())
+        turns = abs(w1) * n * dt / (2 * math.pi)
+        check(len(frames) == n // every + 1 and quat_err < 1e-10,
+              "pose: %d rank(s): dumped quaternions = exp(w t/2 e) over %.1f turns (max error %.2g)"
+              % (np_, turns, quat_err))
+        check(state_err == 0.0, "pose: %d rank(s): f_shapes_state[1..4] = quat1..quat4" % np_)
+        check(angmom_err < 1e-12, "pose: %d rank(s): f_shapes_state[5..7] = I w (box moments; max rel. "
+              "error %.2g)" % (np_, angmom_err))
+
+
 def case_ranks(a):
     wd = a.workdir
     n = 6000
@@ -454,7 +513,8 @@ def case_hopper(a):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("case", choices=["collide", "floor", "edge", "insert", "ranks", "restart", "bad", "hopper"])
+    ap.add_argument("case", choices=["collide", "floor", "edge", "insert", "pose", "ranks", "restart", "bad",
+                                     "hopper"])
     ap.add_argument("--exe", required=True)
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--mpiexec", default="mpirun")
