@@ -113,8 +113,19 @@ FixTrimeshTemplate::FixTrimeshTemplate(LAMMPS *lmp, int narg, char **arg) :
   }
 
   bool any = false;
-  for (int t = 1; t <= atom->ntypes; t++) any = any || templates_[t];
+  obstacle_types_.assign(atom->ntypes+1,0);
+  for (int t = 1; t <= atom->ntypes; t++) {
+    any = any || templates_[t];
+    obstacle_types_[t] = templates_[t] && templates_[t]->fixed;
+  }
   if (!any) error->all(FLERR,"Illegal fix trimesh/template command: no type given");
+}
+
+void *FixTrimeshTemplate::extract(const char *name, int &dim)
+{
+  dim = 1;
+  if (strcmp(name,"obstacle_types") == 0) return obstacle_types_.data();
+  return NULL;
 }
 
 FixTrimeshTemplate::~FixTrimeshTemplate()

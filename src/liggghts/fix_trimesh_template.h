@@ -45,6 +45,9 @@ class FixTrimeshTemplate : public Fix {
   // radius used for neighbour search and ghost cut-offs: bounding radius + halo
   double max_rad(int type);
   double min_rad(int type);
+  // "obstacle_types": int per atom type (index 1..ntypes), 1 for fixed obstacles (neighbor
+  // spacetree lets them be larger than the box)
+  void *extract(const char *name, int &dim);
 
   // Template of atom type t (1..ntypes), NULL where none was given.
   const TrimeshTypeTemplate *type_template(int t) const;
@@ -65,6 +68,7 @@ class FixTrimeshTemplate : public Fix {
   void check_insertion_templates();
 
   std::vector<std::unique_ptr<TrimeshTypeTemplate>> templates_;   // index = type
+  std::vector<int> obstacle_types_;                                // index = type
   class FixTrimeshState *state_;
   double halo_;
   enum Orientation { OrientFile, OrientIdentity, OrientRandom } orientation_;

@@ -55,6 +55,32 @@ void Neighbor::spacetree_settings(int narg, char **arg)
   }
 }
 
+namespace {
+
+// Modify::max_min_rad's largest radius without the types of fixed obstacles.
+double max_movable_radius(Modify *modify, Atom *atom, MPI_Comm world)
+{
+  const int ntypes = atom->ntypes;
+  const int *obstacle = NULL;
+  for (int i = 0; i < modify->nfix && !obstacle; i++) {
+    int dim = 0;
+    obstacle = static_cast<const int *>(modify->fix[i]->extract("obstacle_types",dim));
+  }
+  const auto movable = [&](int t) { return !obstacle || !obstacle[t]; };
+  double maxrad = 0.0;
+  for (int i = 0; i < modify->nfix; i++)
+    for (int t = 1; t <= ntypes; t++)
+      if (movable(t)) maxrad = std::max(maxrad,modify->fix[i]->max_rad(t));
+  if (atom->radius)
+    for (int i = 0; i < atom->nlocal; i++)
+      if (movable(atom->type[i])) maxrad = std::max(maxrad,atom->radius[i]);
+  double all = 0.0;
+  MPI_Allreduce(&maxrad,&all,1,MPI_DOUBLE,MPI_MAX,world);
+  return all;
+}
+
+}
+
 /* ----------------------------------------------------------------------
    checks at each run's Neighbor::init()
 ------------------------------------------------------------------------- */
@@ -72,9 +98,13 @@ void Neighbor::spacetree_init()
   if (domain->triclinic)
     error->all(FLERR,"Neighbor spacetree does not support triclinic boxes");
 
-  // A particle must not reach its own periodic image, nor be wider than a fixed box.
+  // A particle must not reach its own periodic image, nor be wider than a fixed box. Fixed
+  // obstacles (types a fix names through extract("obstacle_types"): fix trimesh/template ...
+  // fixed) are exempt from the fixed-box test: they never move, their reach is their surface,
+  // and the tree's cube is sized from the particles, not the box.
   double maxrad,minrad;
   modify->max_min_rad(maxrad,minrad);
+  const double movable = max_movable_radius(modify,atom,world);
   const double reach = 2.0*maxrad*contactDistanceFactor + skin;
   const char dimname[3] = {'x','y','z'};
   for (int d = 0; d < domain->dimension; d++) {
@@ -85,9 +115,9 @@ void Neighbor::spacetree_init()
                "box length %g in %c",reach,length,dimname[d]);
       error->all(FLERR,msg);
     }
-    if (domain->boundary[d][0] == 1 && domain->boundary[d][1] == 1 && length < 2.0*maxrad) {
+    if (domain->boundary[d][0] == 1 && domain->boundary[d][1] == 1 && length < 2.0*movable) {
       snprintf(msg,sizeof(msg),"Neighbor spacetree: domain too small for the largest particle: "
-               "its diameter %g exceeds the fixed box length %g in %c",2.0*maxrad,length,dimname[d]);
+               "its diameter %g exceeds the fixed box length %g in %c",2.0*movable,length,dimname[d]);
       error->all(FLERR,msg);
     }
   }

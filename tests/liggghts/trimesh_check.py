@@ -16,6 +16,8 @@ Cases (each prints PASS/FAIL lines; exit status 0 = all passed):
             line), a too small particletemplate/sphere is refused
   pose      dump custom quat1..quat4 and f_ID_state[1..7] of freely spinning box grains: the known
             rotation and angular momentum (1 and 2 ranks)
+  big_obstacle  grains on a fixed floor 17 times wider than the box: neighbor spacetree runs it as
+            bin does, same trajectories (1 and 2 ranks)
   ranks     six spinning particles crossing the rank boundary: 1 and 2 ranks give the same surfaces
   restart   write_restart / read_restart half way = one uninterrupted run
   bad       bad input stops with a clear ERROR; the printed Newton-step schedule (defaults,
@@ -370,6 +372,36 @@ def case_pose(a):
               "error %.2g)" % (np_, angmom_err))
 
 
+def case_big_obstacle(a):
+    """A fixed floor slab 0.4 x 0.3 m in a box 24 mm wide (its bounding sphere spans 20 boxes):
+    neighbor spacetree runs the deck as bin does (1 and 2 ranks), with the same trajectories,
+    and the grains land on the floor (none falls through or is lost)."""
+    wd = a.workdir
+    n = 10000
+    res = {}
+    for np_, nstyle in ((1, "bin"), (1, "spacetree"), (2, "spacetree")):
+        tag = "%s_np%d" % (nstyle, np_)
+        sub = os.path.join(wd, tag)
+        os.makedirs(sub, exist_ok=True)
+        write_stl(os.path.join(sub, "floor.stl"), box_triangles((-0.2, -0.15, -0.01), (0.2, 0.15, 0.0)))
+        rc, out, log = run(a, "trimesh_big_obstacle.in", sub, "big", dict(n=n, np=np_, nstyle=nstyle), np_=np_)
+        check(rc == 0, "big obstacle: neighbor %s, %d rank(s) runs (the obstacle is 17 boxes wide)" % (nstyle, np_))
+        if rc != 0:
+            return
+        frames = read_custom_dump(os.path.join(sub, "big_obstacle.dump"))
+        res[tag] = (thermo(log), frames[-1][1])
+    t, last = res["bin_np1"]
+    check((t[:, 1] == 6).all() and t[:, 2].max() >= 1 and t[-1, 4] > 0.0019 and t[-1, 4] < 0.003,
+          "big obstacle: grains land on the floor (contacts up to %d, lowest centre %.4g m, none lost)"
+          % (t[:, 2].max(), t[-1, 4]))
+    cols = ["x", "y", "z", "quat1", "quat2", "quat3", "quat4"]
+    for tag in ("spacetree_np1", "spacetree_np2"):
+        other = res[tag][1]
+        d = max(np.abs(other[c] - last[c]).max() for c in cols)
+        check(d < 1e-9, "big obstacle: %s = bin on 1 rank (positions and quaternions, max difference %.3g)"
+              % (tag, d))
+
+
 def case_ranks(a):
     wd = a.workdir
     n = 6000
@@ -513,8 +545,8 @@ def case_hopper(a):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("case", choices=["collide", "floor", "edge", "insert", "pose", "ranks", "restart", "bad",
-                                     "hopper"])
+    ap.add_argument("case", choices=["collide", "floor", "edge", "insert", "pose", "big_obstacle", "ranks",
+                                     "restart", "bad", "hopper"])
     ap.add_argument("--exe", required=True)
     ap.add_argument("--workdir", required=True)
     ap.add_argument("--mpiexec", default="mpirun")
