@@ -206,6 +206,32 @@ TEST(MeshContactCulling, ObstaclesUpToAMillionTimesTheGrainDecideLikeExactAndRar
   }
 }
 
+TEST(MeshContactCulling, AGrainInsideASlabsBoundingSphereButClearOfItsBoxIsRejectedAtOnce) {
+  const RigidShape g = grain();
+  const RigidShape slab = RigidShape::fromMesh(geometry::boxMesh(Vector3d(12.0, 10.0, 2.0)));
+  const Quaterniond turn(Eigen::AngleAxisd(0.7, Vector3d(1, -1, 2).normalized()));
+  const Pose slabPose{Vector3d(0.5, 0.2, -0.1), turn};
+  for (double gap : {0.5, 1.5 * kEps, 2.5 * kEps}) {
+    // Above the top face, the grain's bounding sphere `gap` from the slab's box.
+    const Pose grainPose{slabPose.position + turn * Vector3d(2.0, -1.0, 1.0 + g.boundingRadius + gap),
+                         Quaterniond::Identity()};
+    for (bool cull : {true, false}) {
+      MeshContactOptions o = method(TriangleDistanceMethod::Exact, cull);
+      o.epsilon = kEps;
+      MeshContactFinder finder(o);
+      std::vector<ContactPoint> contacts;
+      MeshContactStatistics first, second;
+      finder.find(slab, slabPose, g, grainPose, contacts, &first);
+      finder.find(g, grainPose, slab, slabPose, contacts, &second);
+      EXPECT_TRUE(contacts.empty());
+      const bool rejected = cull && gap > 2.0 * kEps;
+      EXPECT_EQ(first.boundingBoxRejections, rejected ? 1u : 0u) << "gap " << gap;
+      EXPECT_EQ(second.boundingBoxRejections, rejected ? 1u : 0u) << "gap " << gap;
+      EXPECT_EQ(first.boundingSphereRejections + second.boundingSphereRejections, 0u);
+    }
+  }
+}
+
 TEST(PrimitiveMeshes, GridBoxIsAClosedBoxOfTheGivenCells) {
   const Vector3d size(3.0, 2.0, 1.0);
   const geometry::TriangleMesh mesh = geometry::gridBoxMesh(size, {3, 2, 4});

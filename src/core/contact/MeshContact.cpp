@@ -33,6 +33,7 @@ const char* triangleDistanceMethodName(TriangleDistanceMethod method) {
 MeshContactStatistics& MeshContactStatistics::operator+=(const MeshContactStatistics& o) {
   bodyPairs += o.bodyPairs;
   boundingSphereRejections += o.boundingSphereRejections;
+  boundingBoxRejections += o.boundingBoxRejections;
   approachRejections += o.approachRejections;
   trianglePairsPruned += o.trianglePairsPruned;
   trianglePairsChecked += o.trianglePairsChecked;
@@ -209,6 +210,16 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
     ++counts.boundingSphereRejections;
     return finish(0);
   }
+  // Each body's bounding sphere against the other's bounding box (a grain far from a slab
+  // obstacle whose bounding sphere holds it).
+  const Matrix3d inverseRotation = rotation.transpose();  // first frame -> second frame
+  const Vector3d firstCentreInSecond = -(inverseRotation * shift);
+  if (options_.triangleCulling &&
+      (clearOfBox(shift, first, second.boundingRadius + contactDistance) ||
+       clearOfBox(firstCentreInSecond, second, first.boundingRadius + contactDistance))) {
+    ++counts.boundingBoxRejections;
+    return finish(0);
+  }
   if (options_.approachPrecheck && !options_.approachPrecheck(firstPose, secondPose, sphereGap)) {
     ++counts.approachRejections;
     return finish(0);
@@ -241,8 +252,6 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
   // the other body's box, and a triangle larger than the other body must reach its bounding
   // sphere by its true distance (a coarse obstacle's big faces).
   const bool cull = options_.triangleCulling;
-  const Matrix3d inverseRotation = rotation.transpose();  // first frame -> second frame
-  const Vector3d firstCentreInSecond = -(inverseRotation * shift);
   nearFirst_.clear();
   nearSecond_.clear();
   forEachTriangle(first, candidatesOf(first, shift, second.boundingRadius + contactDistance),

@@ -21,7 +21,8 @@
 // direction is dominated by rounding.
 //
 // Pipeline per body pair: (1) bounding spheres (radius about the centre of mass) farther apart
-// than 2 eps: no contact; (2) optional approach precheck hook (e.g. bodies separating fast
+// than 2 eps, or one body's bounding sphere farther than 2 eps from the other's bounding box
+// (body frame): no contact; (2) optional approach precheck hook (e.g. bodies separating fast
 // enough to stay apart) may skip the pair; (3) triangle pruning: a triangle of one body is
 // kept only if its bounding sphere reaches within 2 eps of the other body's bounding sphere
 // and of its bounding box (body frame), and, when the triangle is larger than the other body,
@@ -144,6 +145,7 @@ struct ContactPoint {
 struct MeshContactStatistics {
   std::size_t bodyPairs = 0;
   std::size_t boundingSphereRejections = 0;
+  std::size_t boundingBoxRejections = 0;  // a bounding sphere clear of the other's box
   std::size_t approachRejections = 0;
   std::size_t trianglePairsPruned = 0;   // rejected by triangle bounding spheres
   std::size_t trianglePairsChecked = 0;  // given to the distance method
