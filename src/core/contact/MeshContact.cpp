@@ -339,6 +339,7 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
       hybrid.contactDistance = contactDistance;
       hybrid.newtonIterations = newtonIterationsOf(options_);
       hybrid.continuationIterations = continuationIterationsOf(options_);
+      hybrid.clipLargeTriangles = options_.clipLargeTriangles;
       geometry::HybridStatistics hybridCounts;
       geometry::hybridTriangleDistances(pairFirst_.data(), pairSecond_.data(), pairs, hybrid,
                                         results_.data(), &hybridCounts);

@@ -112,6 +112,9 @@ struct MeshContactOptions {
   // hybrid, HybridOptions::continuationIterations; same decisions as exact either way). 0: single
   // stage. Default: the core's (4). Stage 1 + stage 2 <= kMaxNewtonIterations (32).
   int continuationIterations = geometry::HybridOptions{}.continuationIterations;
+  // Hybrid only: its scale-aware path for triangles of very different sizes
+  // (HybridOptions::clipLargeTriangles; same decisions either way, fewer fallbacks with it).
+  bool clipLargeTriangles = true;
   bool deduplicate = true;
   bool localMinimaOnly = true;     // drop contacts that are not local distance minima (5b)
   double mergeNormalCosine = 0.9;  // "reasonably close normals": within about 25 degrees

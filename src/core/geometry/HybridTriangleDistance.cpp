@@ -13,25 +13,27 @@
 namespace spacetree::geometry {
 namespace {
 
-// The acceptance tests of the header for all lanes (branch-free): 0 accepted, 1 residual,
-// 2 contact band fallback.
-SPACETREE_INLINE_INTO_CLONES void verdictsOf(const PenaltyBatchResult& penalty,
-                                             const HybridOptions& options, int* verdict) {
-  const double relativeTolerance = options.relativeTolerance;
-  const double lengthScaleTolerance = options.lengthScaleTolerance;
+// The acceptance tests of the header for upper bound U, lower bound L and length scale h
+// (branch-free): 0 accepted, 1 residual, 2 contact band fallback.
+SPACETREE_INLINE_INTO_CLONES int verdictOf(double upper, double lower, double h,
+                                           const HybridOptions& options) {
   const double threshold = options.contactDistance;
   const bool band = threshold > 0.0;
-  for (int l = 0; l < kTrianglePairBatchSize; ++l) {
-    const double upper = penalty.distance[l];
-    const double lower = penalty.lowerBound[l];
-    const double h = penalty.lengthScale[l];
-    // Written so that a NaN anywhere fails the check and falls back.
-    const bool accurate = upper - lower <= relativeTolerance * upper + lengthScaleTolerance * h;
-    const double slack = kRoundingSlack * (upper + 2.0 * h);
-    const bool straddlesThreshold =
-        band & (lower - slack < threshold) & (upper + slack >= threshold);
-    verdict[l] = accurate ? (straddlesThreshold ? 2 : 0) : 1;
-  }
+  // Written so that a NaN anywhere fails the check and falls back.
+  const bool accurate =
+      upper - lower <= options.relativeTolerance * upper + options.lengthScaleTolerance * h;
+  const double slack = kRoundingSlack * (upper + 2.0 * h);
+  const bool straddlesThreshold =
+      band & (lower - slack < threshold) & (upper + slack >= threshold);
+  return accurate ? (straddlesThreshold ? 2 : 0) : 1;
+}
+
+// The same for all lanes of a batch.
+SPACETREE_INLINE_INTO_CLONES void verdictsOf(const PenaltyBatchResult& penalty,
+                                             const HybridOptions& options, int* verdict) {
+  for (int l = 0; l < kTrianglePairBatchSize; ++l)
+    verdict[l] = verdictOf(penalty.distance[l], penalty.lowerBound[l], penalty.lengthScale[l],
+                           options);
 }
 
 // Stage 2 of the two-stage hybrid: the pairs whose stage-1 residual was too large, gathered
@@ -88,10 +90,12 @@ SPACETREE_INLINE_INTO_CLONES void continueQueued(const PairSource& pairs, Contin
 }
 
 // The scale-aware path: pairs of very different triangle sizes that stage 1 leaves uncertified,
-// with the large triangle clipped to the small one's neighbourhood (LargeTriangleClip.h),
-// gathered into full batches that run the whole schedule from the centroids. Each lane carries
-// the original pair's length scale (the certification's slack must cover the rounding of the
-// clipped vertices, a few ulps of the large triangle) and the clip's vertex-face bounds.
+// with the large triangle clipped to the small one's neighbourhood (LargeTriangleClip.h). The
+// clip's own bounds certify most of them (a vertex over the large face, a vertex or an edge at
+// its edge); the others are gathered into full batches that run the whole schedule from the
+// centroids on the clipped pair. Each lane carries the original pair's length scale (the
+// certification's slack must cover the rounding of the clipped vertices, a few ulps of the
+// large triangle) and the clip's bounds.
 struct ClipQueue {
   TrianglePairBatch batch{};
   std::size_t index[kTrianglePairBatchSize] = {};
@@ -102,12 +106,9 @@ struct ClipQueue {
   double pointOnSecond[3][kTrianglePairBatchSize] = {};
   int size = 0;
 
-  // Queues pair k (first, second) with its large triangle (0 or 1) clipped; false when the
-  // clip does not apply (the pair takes the ordinary path).
-  bool push(const Triangle& first, const Triangle& second, int large, double h, std::size_t k) {
-    const LargeTriangleClip clip =
-        large == 0 ? clipLargeTriangle(first, second) : clipLargeTriangle(second, first);
-    if (!clip.clipped) return false;
+  // Queues pair k (first, second) with its large triangle (0 or 1) clipped.
+  void push(const LargeTriangleClip& clip, const Triangle& first, const Triangle& second,
+            int large, double h, std::size_t k) {
     batch.set(size, large == 0 ? clip.part : first, large == 1 ? clip.part : second);
     index[size] = k;
     lengthScale[size] = h;
@@ -120,9 +121,17 @@ struct ClipQueue {
       pointOnSecond[c][size] = onSecond[c];
     }
     ++size;
-    return true;
   }
 };
+
+// The clip's own pair of points as the result of pair (first, second).
+TriangleDistanceResult clipResult(const LargeTriangleClip& clip, int large) {
+  TriangleDistanceResult r;
+  r.distance = clip.upperBound;
+  r.pointOnFirst = large == 0 ? clip.pointOnLarge : clip.pointOnSmall;
+  r.pointOnSecond = large == 0 ? clip.pointOnSmall : clip.pointOnLarge;
+  return r;
+}
 
 template <class PairSource>
 SPACETREE_INLINE_INTO_CLONES void runClipped(const PairSource& pairs, ClipQueue& queue,
@@ -154,7 +163,6 @@ SPACETREE_INLINE_INTO_CLONES void runClipped(const PairSource& pairs, ClipQueue&
   }
   int verdict[kTrianglePairBatchSize];
   verdictsOf(penalty, options, verdict);
-  counts.clipped += std::size_t(queue.size);
   for (int l = 0; l < queue.size; ++l) {
     const std::size_t k = queue.index[l];
     if (verdict[l] == 0) {
@@ -212,15 +220,32 @@ SPACETREE_INLINE_INTO_CLONES void hybridDistancesOf(const PairSource& pairs, con
     for (int l = 0; l < lanes; ++l) {
       if (verdict[l] == 0) continue;
       const std::size_t k = begin + std::size_t(l);
-      // Very different triangle sizes: the clipped pair instead (LargeTriangleClip.h).
+      // Very different triangle sizes: the clipped pair instead (LargeTriangleClip.h),
+      // certified by the clip's bounds where they meet, else by the kernel on the clipped pair.
       if (verdict[l] == 1 && options.clipLargeTriangles) {
         const double a = penalty.longestSquaredEdge[0][l], b = penalty.longestSquaredEdge[1][l];
         const int large = a > clipRatio * b ? 0 : (b > clipRatio * a ? 1 : -1);
-        if (large >= 0 &&
-            clipQueue.push(pairs.first(k), pairs.second(k), large, penalty.lengthScale[l], k)) {
-          if (clipQueue.size == kTrianglePairBatchSize)
-            runClipped(pairs, clipQueue, clippedWeights, clippedSteps, penaltyOptions, options,
-                       results, counts);
+        const Triangle &first = pairs.first(k), &second = pairs.second(k);
+        const double h = penalty.lengthScale[l];
+        const ClipAcceptance accept{options.relativeTolerance, options.lengthScaleTolerance * h};
+        const LargeTriangleClip clip = large == 0   ? clipLargeTriangle(first, second, accept)
+                                       : large == 1 ? clipLargeTriangle(second, first, accept)
+                                                    : LargeTriangleClip{};
+        const int bounds =
+            clip.bounded ? verdictOf(clip.upperBound, clip.lowerBound, h, options) : 1;
+        if (bounds != 1 || clip.clipped) {
+          ++counts.clipped;
+          if (bounds == 0) {
+            results[k] = clipResult(clip, large);
+          } else if (bounds == 2) {
+            ++counts.contactBandFallbacks;
+            results[k] = triangleDistance(first, second);
+          } else {
+            clipQueue.push(clip, first, second, large, h, k);
+            if (clipQueue.size == kTrianglePairBatchSize)
+              runClipped(pairs, clipQueue, clippedWeights, clippedSteps, penaltyOptions, options,
+                         results, counts);
+          }
           continue;
         }
       }

@@ -44,7 +44,8 @@ int largeTriangleOfPair(const Triangle& first, const Triangle& second) {
   return -1;
 }
 
-LargeTriangleClip clipLargeTriangle(const Triangle& large, const Triangle& small) {
+LargeTriangleClip clipLargeTriangle(const Triangle& large, const Triangle& small,
+                                    const ClipAcceptance& accept) {
   LargeTriangleClip out;
   // Everything relative to the large triangle's vertex 0 (rounding scales with the pair).
   const Vector3d e1 = large[1] - large[0], e2 = large[2] - large[0];
@@ -52,54 +53,74 @@ LargeTriangleClip clipLargeTriangle(const Triangle& large, const Triangle& small
   const double nn = n.squaredNorm();
   if (!(nn > 0.0) || !std::isfinite(nn)) return out;
   const double area = std::sqrt(nn);  // |e1 x e2|
-  // Parameters of the projection of q onto the large triangle's plane (area coordinates).
-  const auto project = [&](const Vector3d& q, double& u1, double& u2) {
-    u1 = q.cross(e2).dot(n) / nn;
-    u2 = e1.cross(q).dot(n) / nn;
-  };
+  // Dual basis of the large triangle's plane: the parameters of the projection of q are
+  // (q . d1, q . d2) (area coordinates: d1 = e2 x n / |n|^2, d2 = n x e1 / |n|^2).
+  const Vector3d d1 = e2.cross(n) / nn, d2 = n.cross(e1) / nn;
+  const Vector3d unit = n / area;
   const Vector3d q[3] = {small[0] - large[0], small[1] - large[0], small[2] - large[0]};
+  const double height[3] = {unit.dot(q[0]), unit.dot(q[1]), unit.dot(q[2])};
 
   // The best pair of points found (relative coordinates): x on the large triangle, y on the
   // small one; first each small vertex against its projection clamped into the large triangle.
-  double best = INFINITY;
+  double best = INFINITY;  // squared distance
   Vector3d x = Vector3d::Zero(), y = Vector3d::Zero();
-  const auto offer = [&](const Vector3d& onLarge, const Vector3d& onSmall) {
-    const double d = (onSmall - onLarge).norm();
+  int vertex = -1;         // the small triangle's vertex y is, or -1
+  const auto offer = [&](const Vector3d& onLarge, const Vector3d& onSmall, int j) {
+    const double d = (onSmall - onLarge).squaredNorm();
     if (d < best) {
       best = d;
       x = onLarge;
       y = onSmall;
+      vertex = j;
+      return true;
     }
+    return false;
   };
-  for (const Vector3d& p : q) {
-    double u1, u2;
-    project(p, u1, u2);
-    u1 = std::max(u1, 0.0);
-    u2 = std::max(u2, 0.0);
+  for (int j = 0; j < 3; ++j) {
+    double u1 = std::max(q[j].dot(d1), 0.0), u2 = std::max(q[j].dot(d2), 0.0);
     const double sum = u1 + u2;
     if (sum > 1.0) {
       u1 /= sum;
       u2 /= sum;
     }
-    offer(e1 * u1 + e2 * u2, p);
+    offer(e1 * u1 + e2 * u2, q[j], j);
   }
   if (!std::isfinite(best)) return out;
+  // Lower bound along the large triangle's normal (vertex over the face: the large triangle's
+  // own heights along the rounded normal are kept, so the bound is rigorous for that direction).
+  {
+    const double l1 = unit.dot(e1), l2 = unit.dot(e2);
+    const double minL = std::min({0.0, l1, l2}), maxL = std::max({0.0, l1, l2});
+    const double minS = std::min({height[0], height[1], height[2]});
+    const double maxS = std::max({height[0], height[1], height[2]});
+    out.lowerBound = std::max({minS - maxL, minL - maxS, 0.0});
+  }
+  const auto finishBounds = [&] {
+    out.upperBound = std::sqrt(best);
+    out.pointOnLarge = large[0] + x;
+    out.pointOnSmall = vertex >= 0 ? small[vertex] : Vector3d(large[0] + y);
+    out.bounded = true;
+  };
+  const auto accepted = [&] {
+    return accept.relative >= 0.0 &&
+           out.upperBound - out.lowerBound <= accept.relative * out.upperBound + accept.absolute;
+  };
+  finishBounds();
+  if (accepted()) return out;
 
   // The ball B(c, D + r) around the small triangle's centroid as an ellipse in the large
   // triangle's parameters, and the sub-triangle bounding its part inside the triangle.
   const Vector3d c = (q[0] + q[1] + q[2]) / 3.0;
-  const double r = std::max({(q[0] - c).norm(), (q[1] - c).norm(), (q[2] - c).norm()});
+  const double r = std::sqrt(std::max({(q[0] - c).squaredNorm(), (q[1] - c).squaredNorm(),
+                                       (q[2] - c).squaredNorm()}));
   // The relative margin only widens the part (rounding of the extent below is ~1e-16).
-  const double reach = (best + r) * (1.0 + 1e-9);
-  const double h = n.dot(c) / area;
+  const double reach = (std::sqrt(best) + r) * (1.0 + 1e-9);
+  const double h = (height[0] + height[1] + height[2]) / 3.0;
   const double kappaSquared = reach * reach - h * h;
   if (!(kappaSquared > 0.0)) return out;
-  const double kappa = std::sqrt(kappaSquared);
-  double c1, c2;
-  project(c, c1, c2);
-  const double w1 = kappa * e2.norm() / area;
-  const double w2 = kappa * e1.norm() / area;
-  const double w3 = kappa * (e2 - e1).norm() / area;
+  const double kappa = std::sqrt(kappaSquared) / area;
+  const double c1 = c.dot(d1), c2 = c.dot(d2);
+  const double w1 = kappa * e2.norm(), w2 = kappa * e1.norm(), w3 = kappa * (e2 - e1).norm();
   const double a1 = std::max(0.0, c1 - w1), a2 = std::max(0.0, c2 - w2);
   const double b = std::min(1.0, c1 + c2 + w3);
   const double scale = b - a1 - a2;
@@ -108,46 +129,34 @@ LargeTriangleClip clipLargeTriangle(const Triangle& large, const Triangle& small
 
   // Edges of the part that lie on the large triangle's own edges (where the clamps bit: a
   // closest point there may be on the edge, not over the face): each against the small
-  // triangle's edges and vertices.
+  // triangle's edges (segment distances, their end points covering its vertices).
   Vector3d edgeOfLarge = Vector3d::Zero(), edgeOfSmall = Vector3d::Zero();
   bool edgeEdgeBest = false;
-  const std::pair<int, int> sides[3] = {{0, 1}, {0, 2}, {1, 2}};  // on u2 = 0, u1 = 0, u1 + u2 = 1
+  const int sides[3][2] = {{0, 1}, {0, 2}, {1, 2}};  // on u2 = 0, u1 = 0, u1 + u2 = 1
   const bool onEdge[3] = {a2 == 0.0, a1 == 0.0, b == 1.0};
   for (int s = 0; s < 3; ++s) {
     if (!onEdge[s]) continue;
-    const Vector3d& from = part[sides[s].first];
-    const Vector3d along = part[sides[s].second] - from;
+    const Vector3d& from = part[sides[s][0]];
+    const Vector3d along = part[sides[s][1]] - from;
     const double inverse = inverseSquaredLengthOrZero(along);
     for (int j = 0; j < 3; ++j) {
       const Vector3d smallEdge = q[(j + 1) % 3] - q[j];
       const SegmentClosestPoints ee = closestPointsOfSegments(
           from, along, inverse, q[j], smallEdge, inverseSquaredLengthOrZero(smallEdge));
-      const double before = best;
-      offer(ee.pointOnFirst, ee.pointOnSecond);
-      if (best < before) {
+      if (offer(ee.pointOnFirst, ee.pointOnSecond, -1)) {
         edgeEdgeBest = true;
         edgeOfLarge = along;
         edgeOfSmall = smallEdge;
       }
-      const SegmentClosestPoints ve =
-          closestPointsOfSegments(from, along, inverse, q[j], Vector3d::Zero(), 0.0);
-      const double beforeVertex = best;
-      offer(ve.pointOnFirst, ve.pointOnSecond);
-      if (best < beforeVertex) edgeEdgeBest = false;
     }
   }
-  out.upperBound = best;
-  out.pointOnLarge = large[0] + x;
-  out.pointOnSmall = large[0] + y;
-  // The candidate on the small triangle is one of its vertices exactly where it came from one.
-  for (int j = 0; j < 3; ++j)
-    if (y == q[j]) out.pointOnSmall = small[j];
+  finishBounds();
 
-  // Lower bound: separating axes along the large triangle's normal (vertex over the face),
-  // along the best pair's direction (exact at a minimum of any kind) and, for an edge-edge
-  // candidate, along the two edges' cross product.
-  out.lowerBound = std::max(separationAlong(n, e1, e2, q), separationAlong(y - x, e1, e2, q));
-  if (edgeEdgeBest)
+  // Lower bound, beyond the normal's: separating axes along the best pair's direction (exact at
+  // a minimum of any kind) and, for an edge-edge candidate, along the two edges' cross product.
+  if (out.upperBound > out.lowerBound)
+    out.lowerBound = std::max(out.lowerBound, separationAlong(y - x, e1, e2, q));
+  if (edgeEdgeBest && out.upperBound > out.lowerBound)
     out.lowerBound = std::max(out.lowerBound,
                               separationAlong(edgeOfLarge.cross(edgeOfSmall), e1, e2, q));
   out.part = Triangle(large[0] + part[0], large[0] + part[1], large[0] + part[2]);

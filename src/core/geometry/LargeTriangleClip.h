@@ -43,7 +43,8 @@ constexpr double kClipSizeRatio = 4.0;
 constexpr double kClipMaximumScale = 0.5;
 
 struct LargeTriangleClip {
-  bool clipped = false;        // false: keep the pair as it is (part not set)
+  bool bounded = false;        // the bounds below are set (false: degenerate large triangle)
+  bool clipped = false;        // the part is set (false: keep the pair as it is)
   Triangle part;               // the sub-triangle of the large triangle (same vertex order)
   double upperBound = 0.0;     // |pointOnSmall - pointOnLarge|, a distance of the two triangles
   Eigen::Vector3d pointOnSmall = Eigen::Vector3d::Zero();  // a point of the small triangle
@@ -51,10 +52,19 @@ struct LargeTriangleClip {
   double lowerBound = 0.0;     // separating-axis bound (>= 0), <= the distance
 };
 
-// The clip of `large` against `small` (see above); clipped = false when the large triangle is
-// degenerate or the part would not be smaller than kClipMaximumScale of it. Bounds are set
-// whenever clipped is true.
-LargeTriangleClip clipLargeTriangle(const Triangle& large, const Triangle& small);
+// Gap at which the bounds are good enough: upperBound - lowerBound <= relative * upperBound +
+// absolute. Negative relative: never (always the part and every bound).
+struct ClipAcceptance {
+  double relative = -1.0;
+  double absolute = 0.0;
+};
+
+// The clip of `large` against `small` (see above). The vertex-over-face bounds come first; if
+// they already meet `accept`, the result is bounded but not clipped (no part, no edge bounds:
+// the caller needs neither). Otherwise clipped = false when the large triangle is degenerate
+// or the part would not be smaller than kClipMaximumScale of it.
+LargeTriangleClip clipLargeTriangle(const Triangle& large, const Triangle& small,
+                                    const ClipAcceptance& accept = ClipAcceptance{});
 
 // Which triangle of a pair to clip: 0 (the first), 1 (the second) or -1 (sizes within
 // kClipSizeRatio of each other, or a degenerate one).
