@@ -306,13 +306,16 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
       const double rk = second.triangleRadii[std::size_t(nearSecond_[k])];
       const double reach = ri + rk + contactDistance;
       if (!((centre - secondCentres_[k]).squaredNorm() < reach * reach)) continue;
-      // Triangles of very different sizes: the small one's sphere against the large one itself.
-      if (cull && ri > kTriangleCullSizeRatio * rk &&
-          clearOfPoint(secondCentres_[k], ti, ri, rk + contactDistance))
-        continue;
-      if (cull && rk > kTriangleCullSizeRatio * ri &&
-          clearOfPoint(centre, secondTriangles_[k], rk, ri + contactDistance))
-        continue;
+      // Each triangle's sphere against the other triangle itself (the larger one first).
+      if (cull) {
+        const bool firstLarger = ri >= rk;
+        if (firstLarger ? clearOfPoint(secondCentres_[k], ti, ri, rk + contactDistance)
+                        : clearOfPoint(centre, secondTriangles_[k], rk, ri + contactDistance))
+          continue;
+        if (firstLarger ? clearOfPoint(centre, secondTriangles_[k], rk, ri + contactDistance)
+                        : clearOfPoint(secondCentres_[k], ti, ri, rk + contactDistance))
+          continue;
+      }
       pairFirst_.push_back(ti);
       pairSecond_.push_back(secondTriangles_[k]);
       pairIndex_.push_back({i, int(k)});

@@ -27,15 +27,16 @@
 // kept only if its bounding sphere reaches within 2 eps of the other body's bounding sphere
 // and of its bounding box (body frame), and, when the triangle is larger than the other body,
 // if the triangle itself comes within that body's bounding radius + 2 eps of its centre; a
-// pair of kept triangles only if their spheres are within 2 eps and, for radii more than
-// kTriangleCullSizeRatio apart, the small triangle's sphere comes within 2 eps of the large
-// triangle itself. Every test is conservative (a surface point within 2 eps of the other
-// surface passes all of them), so no contact is lost: a coarse obstacle's big triangles meet
-// only the grain triangles that face them. For an indexed shape (kTriangleIndexMinimum
-// triangles, or kTriangleIndexRadiusRatio times the other body) the candidates come from
-// its TriangleBvh, queried with the other body's bounding sphere in this shape's frame, and
-// pass the same tests as in the loop over all triangles, in ascending order: the same set,
-// the same contacts, bit for bit; (4) the
+// pair of kept triangles only if their spheres are within 2 eps and each triangle's sphere
+// comes within 2 eps of the other triangle itself. Every test is conservative (a surface point
+// within 2 eps of the other surface passes all of them), so no contact is lost: a coarse
+// obstacle's big triangles meet only the grain triangles that face them, and about half of the
+// triangle pairs of two grains in contact are dropped before the distance kernel. For an
+// indexed shape
+// (kTriangleIndexMinimum triangles, or kTriangleIndexRadiusRatio times the other body) the
+// candidates come from its TriangleBvh, queried with the other body's bounding sphere in this
+// shape's frame, and pass the same tests as in the loop over all triangles, in ascending
+// order: the same set, the same contacts, bit for bit; (4) the
 // surviving triangle pairs go to the chosen distance method in one batch (Exact:
 // triangleDistance; Penalty: the batched penalty-Newton kernel, uncertified; Hybrid: penalty
 // with certified fallback, contact decisions identical to Exact's; by default two-stage:
@@ -98,9 +99,6 @@ constexpr double kFeatureTolerance = 1e-7;
 // over all triangles (a choice, not tuned; the result is the same either way).
 constexpr std::size_t kTriangleIndexMinimum = 64;
 constexpr double kTriangleIndexRadiusRatio = 4.0;
-// A triangle pair whose bounding radii differ more than this is also tested by the small
-// triangle's sphere against the large triangle itself (step 3).
-constexpr double kTriangleCullSizeRatio = 2.0;
 
 struct MeshContactOptions {
   double epsilon = 0.0;  // halo depth; contact when the triangle distance < 2 epsilon
