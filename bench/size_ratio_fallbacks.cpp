@@ -26,15 +26,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "contact/MeshContact.h"
-#include "geometry/DentedSphere.h"
 #include "geometry/PrimitiveMeshes.h"
 #include "geometry/RigidShape.h"
+#include "grain_on_slab_scenes.h"  // tests/unit
 
 using namespace spacetree;
 using namespace spacetree::contact;
@@ -52,36 +51,7 @@ double threadSeconds() {
   return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
-struct Scene {
-  Pose slab, grain;
-};
-
-std::vector<Scene> scenes(const RigidShape& g, const Vector3d& size, int count, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::normal_distribution<double> n;
-  const Quaterniond slabTurn(Eigen::AngleAxisd(0.3, Vector3d(1, 2, 3).normalized()));
-  std::vector<Scene> out;
-  for (int s = 0; s < count; ++s) {
-    const Quaterniond turn = Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
-    double lowest = INFINITY;
-    for (const Vector3d& v : g.bodyMesh.vertices) lowest = std::min(lowest, (turn * v).z());
-    Vector3d at((u(rng) - 0.5) * size.x(), (u(rng) - 0.5) * size.y(), 0.0);
-    const double kind = u(rng);
-    if (kind > 0.8) {
-      at.x() = std::copysign(0.5 * size.x() + 0.6 * (u(rng) - 0.7), at.x());
-      at.y() = std::copysign(0.5 * size.y() + 0.6 * (u(rng) - 0.7), at.y());
-    } else if (kind > 0.5) {
-      at.x() = std::copysign(0.5 * size.x() + 0.6 * (u(rng) - 0.7), at.x());
-    }
-    at.z() = 0.5 * size.z() - lowest + (0.02 + 2.48 * u(rng)) * kEps;
-    Scene scene;
-    scene.slab = Pose{Vector3d(0.2, -0.1, 0.3), slabTurn};
-    scene.grain = Pose{slabTurn * at + scene.slab.position, slabTurn * turn};
-    out.push_back(scene);
-  }
-  return out;
-}
+using grain_on_slab::Scene;
 
 struct Configuration {
   const char* name;
@@ -144,11 +114,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  geometry::DentedSphereOptions d;
-  d.triangles = 40;
-  d.amplitude = 0.2;
-  d.seed = 7;
-  const RigidShape grain = RigidShape::fromMesh(geometry::dentedSphere(d));
+  const RigidShape grain = grain_on_slab::grain();
   const std::vector<Configuration> configurations = {
       {"hybrid", TriangleDistanceMethod::Hybrid, true, true},
       {"hybrid_no_clip", TriangleDistanceMethod::Hybrid, true, false},
@@ -161,7 +127,7 @@ int main(int argc, char** argv) {
     for (double ratio : ratios) {
       const Vector3d size(ratio, 0.8 * ratio, 0.1 * ratio);
       const RigidShape slab = RigidShape::fromMesh(geometry::boxMesh(size));
-      const std::vector<Scene> all = scenes(grain, size, sceneCount, 5);
+      const std::vector<Scene> all = grain_on_slab::scenes(grain, size, kEps, sceneCount, 5);
       for (const Configuration& c : configurations)
         if (only == c.name) {
           const Outcome o = run(c, slab, grain, all);
@@ -179,7 +145,7 @@ int main(int argc, char** argv) {
   for (double ratio : ratios) {
     const Vector3d size(ratio, 0.8 * ratio, 0.1 * ratio);
     const RigidShape slab = RigidShape::fromMesh(geometry::boxMesh(size));
-    const std::vector<Scene> all = scenes(grain, size, sceneCount, 5);
+    const std::vector<Scene> all = grain_on_slab::scenes(grain, size, kEps, sceneCount, 5);
     std::vector<Outcome> first(configurations.size());
     std::vector<std::vector<double>> times(configurations.size());
     for (int r = 0; r < rounds; ++r)

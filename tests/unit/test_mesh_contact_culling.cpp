@@ -12,13 +12,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <vector>
 
 #include "contact/MeshContact.h"
-#include "geometry/DentedSphere.h"
 #include "geometry/PrimitiveMeshes.h"
 #include "geometry/RigidShape.h"
+#include "grain_on_slab_scenes.h"
 
 using namespace spacetree;
 using namespace spacetree::contact;
@@ -30,47 +29,11 @@ namespace {
 
 const double kEps = 0.01;  // grain radius 1
 
-RigidShape grain() {
-  geometry::DentedSphereOptions d;
-  d.triangles = 40;
-  d.amplitude = 0.2;
-  d.seed = 7;
-  return RigidShape::fromMesh(geometry::dentedSphere(d));
-}
+using grain_on_slab::grain;
+using grain_on_slab::Scene;
 
-struct Scene {
-  Pose slab, grain;
-};
-
-// The grain at random orientations over the slab's top face (size: the slab's edge lengths;
-// the slab at rest at the origin turned by a fixed rotation), over its interior, near an
-// edge or near a corner, its lowest vertex 0.02 .. 2.5 eps above the face (in the halo; rigid
-// surfaces that intersect have no unique closest points).
 std::vector<Scene> scenes(const RigidShape& g, const Vector3d& size, int count, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::normal_distribution<double> n;
-  const Quaterniond slabTurn(Eigen::AngleAxisd(0.3, Vector3d(1, 2, 3).normalized()));
-  std::vector<Scene> out;
-  for (int s = 0; s < count; ++s) {
-    const Quaterniond turn = Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
-    double lowest = INFINITY;
-    for (const Vector3d& v : g.bodyMesh.vertices) lowest = std::min(lowest, (turn * v).z());
-    Vector3d at((u(rng) - 0.5) * size.x(), (u(rng) - 0.5) * size.y(), 0.0);
-    const double kind = u(rng);
-    if (kind > 0.8) {  // near a corner
-      at.x() = std::copysign(0.5 * size.x() + 0.6 * (u(rng) - 0.7), at.x());
-      at.y() = std::copysign(0.5 * size.y() + 0.6 * (u(rng) - 0.7), at.y());
-    } else if (kind > 0.5) {  // near an edge
-      at.x() = std::copysign(0.5 * size.x() + 0.6 * (u(rng) - 0.7), at.x());
-    }
-    at.z() = 0.5 * size.z() - lowest + (0.02 + 2.48 * u(rng)) * kEps;
-    Scene scene;
-    scene.slab = Pose{Vector3d(0.2, -0.1, 0.3), slabTurn};
-    scene.grain = Pose{slabTurn * at + scene.slab.position, slabTurn * turn};
-    out.push_back(scene);
-  }
-  return out;
+  return grain_on_slab::scenes(g, size, kEps, count, seed);
 }
 
 struct Outcome {

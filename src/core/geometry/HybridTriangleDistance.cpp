@@ -55,6 +55,36 @@ struct ContinuationQueue {
   }
 };
 
+// Lanes [size, 16) of a gathered batch repeat lane 0 (valid input, results unused).
+SPACETREE_INLINE_INTO_CLONES void padWithLaneZero(TrianglePairBatch& batch, int size) {
+  for (int l = size; l < kTrianglePairBatchSize; ++l)
+    for (int t = 0; t < 2; ++t)
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c) batch.coordinate[t][v][c][l] = batch.coordinate[t][v][c][0];
+}
+
+// The results of a gathered batch's lanes [0, size), lane l holding pair index[l]: the lane's
+// own where the acceptance tests pass, else the exact method's.
+template <class PairSource>
+SPACETREE_INLINE_INTO_CLONES void acceptOrFallBack(const PairSource& pairs,
+                                                   const PenaltyBatchResult& penalty,
+                                                   const std::size_t* index, int size,
+                                                   const HybridOptions& options,
+                                                   TriangleDistanceResult* results,
+                                                   HybridStatistics& counts) {
+  int verdict[kTrianglePairBatchSize];
+  verdictsOf(penalty, options, verdict);
+  for (int l = 0; l < size; ++l) {
+    const std::size_t k = index[l];
+    if (verdict[l] == 0) {
+      results[k] = penalty.lane(l);
+    } else {
+      ++(verdict[l] == 2 ? counts.contactBandFallbacks : counts.residualFallbacks);
+      results[k] = triangleDistance(pairs.first(k), pairs.second(k));
+    }
+  }
+}
+
 template <class PairSource>
 SPACETREE_INLINE_INTO_CLONES void continueQueued(const PairSource& pairs, ContinuationQueue& queue,
                                                  const double* weights, int steps,
@@ -63,29 +93,14 @@ SPACETREE_INLINE_INTO_CLONES void continueQueued(const PairSource& pairs, Contin
                                                  TriangleDistanceResult* results,
                                                  HybridStatistics& counts) {
   if (queue.size == 0) return;
-  // Lanes past the end of a partial batch repeat lane 0 (valid input, results unused).
-  for (int l = queue.size; l < kTrianglePairBatchSize; ++l) {
-    for (int t = 0; t < 2; ++t)
-      for (int v = 0; v < 3; ++v)
-        for (int c = 0; c < 3; ++c)
-          queue.batch.coordinate[t][v][c][l] = queue.batch.coordinate[t][v][c][0];
+  padWithLaneZero(queue.batch, queue.size);
+  for (int l = queue.size; l < kTrianglePairBatchSize; ++l)
     for (int i = 0; i < 4; ++i) queue.start[i][l] = queue.start[i][0];
-  }
   PenaltyBatchResult penalty;
   penaltyTriangleDistanceBatchContinued(queue.batch, weights, steps, queue.start, penaltyOptions,
                                         penalty);
-  int verdict[kTrianglePairBatchSize];
-  verdictsOf(penalty, options, verdict);
   counts.continued += std::size_t(queue.size);
-  for (int l = 0; l < queue.size; ++l) {
-    const std::size_t k = queue.index[l];
-    if (verdict[l] == 0) {
-      results[k] = penalty.lane(l);
-    } else {
-      ++(verdict[l] == 2 ? counts.contactBandFallbacks : counts.residualFallbacks);
-      results[k] = triangleDistance(pairs.first(k), pairs.second(k));
-    }
-  }
+  acceptOrFallBack(pairs, penalty, queue.index, queue.size, options, results, counts);
   queue.size = 0;
 }
 
@@ -141,11 +156,7 @@ SPACETREE_INLINE_INTO_CLONES void runClipped(const PairSource& pairs, ClipQueue&
                                              TriangleDistanceResult* results,
                                              HybridStatistics& counts) {
   if (queue.size == 0) return;
-  for (int l = queue.size; l < kTrianglePairBatchSize; ++l)
-    for (int t = 0; t < 2; ++t)
-      for (int v = 0; v < 3; ++v)
-        for (int c = 0; c < 3; ++c)
-          queue.batch.coordinate[t][v][c][l] = queue.batch.coordinate[t][v][c][0];
+  padWithLaneZero(queue.batch, queue.size);
   PenaltyBatchResult penalty;
   penaltyTriangleDistanceBatchContinued(queue.batch, weights, steps, nullptr, penaltyOptions,
                                         penalty);
@@ -161,17 +172,7 @@ SPACETREE_INLINE_INTO_CLONES void runClipped(const PairSource& pairs, ClipQueue&
     if (queue.lowerBound[l] > penalty.lowerBound[l]) penalty.lowerBound[l] = queue.lowerBound[l];
     penalty.lengthScale[l] = queue.lengthScale[l];
   }
-  int verdict[kTrianglePairBatchSize];
-  verdictsOf(penalty, options, verdict);
-  for (int l = 0; l < queue.size; ++l) {
-    const std::size_t k = queue.index[l];
-    if (verdict[l] == 0) {
-      results[k] = penalty.lane(l);
-    } else {
-      ++(verdict[l] == 2 ? counts.contactBandFallbacks : counts.residualFallbacks);
-      results[k] = triangleDistance(pairs.first(k), pairs.second(k));
-    }
-  }
+  acceptOrFallBack(pairs, penalty, queue.index, queue.size, options, results, counts);
   queue.size = 0;
 }
 
