@@ -27,7 +27,7 @@ AdaptiveGrid::AdaptiveGrid(AdaptiveGridOptions options)
 }
 
 double AdaptiveGrid::meshSize(int level) const {
-  return geometry_.rootSize / double(kPowersOfThree[level]);  // as Spacetree computes it
+  return meshSizeOfLevel(geometry_.rootSize, level);
 }
 
 int AdaptiveGrid::finestFit(double required) const {
@@ -46,9 +46,8 @@ AdaptiveGrid::Index3 AdaptiveGrid::cellOf(int level, const double p[3]) const {
 }
 
 AdaptiveGrid::Index3 AdaptiveGrid::nearestVertex(int level, const double p[3]) const {
-  // Same rounding as Spacetree::placeParticles, so both agree on the host vertex.
   const double inv = inverseMeshSize_[level];
-  auto v = [&](int d) { return std::int64_t((p[d] - geometry_.origin[d]) * inv + 0.5); };
+  auto v = [&](int d) { return nearestVertexCoordinate(p[d], geometry_.origin[d], inv); };
   return {v(0), v(1), v(2)};
 }
 
