@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "tree/WordPacking.h"
 
 namespace spacetree {
 
@@ -754,17 +755,6 @@ enum SerialHeader {
   kRefinements, kCoarsenings, kHeaderWords
 };
 
-std::int64_t wordOf(double d) {
-  std::int64_t w;
-  std::memcpy(&w, &d, sizeof w);
-  return w;
-}
-double doubleOf(std::int64_t w) {
-  double d;
-  std::memcpy(&d, &w, sizeof d);
-  return d;
-}
-
 [[noreturn]] void badData(const char* what) {
   throw std::invalid_argument(std::string("adaptive grid restart data: ") + what);
 }
@@ -790,15 +780,15 @@ std::vector<std::int64_t> AdaptiveGrid::serialise() const {
   w[kMagic] = kSerialMagic;
   w[kVersion] = kSerialVersion;
   w[kType] = std::int64_t(options_.type);
-  w[kEpsilon] = wordOf(options_.epsilon);
+  w[kEpsilon] = wordOfDouble(options_.epsilon);
   w[kMaxLevel] = options_.maxLevel;
   w[kShock] = options_.shock;
   w[kThreshold] = options_.coarseningThreshold;
-  w[kPadding] = wordOf(options_.padding);
+  w[kPadding] = wordOfDouble(options_.padding);
   w[kPairsFromCaller] = options_.pairsFromCaller ? 1 : 0;
   w[kHaveGeometry] = haveGeometry_ ? 1 : 0;
-  for (int d = 0; d < 3; ++d) w[kOrigin0 + d] = wordOf(geometry_.origin[d]);
-  w[kRootSize] = wordOf(geometry_.rootSize);
+  for (int d = 0; d < 3; ++d) w[kOrigin0 + d] = wordOfDouble(geometry_.origin[d]);
+  w[kRootSize] = wordOfDouble(geometry_.rootSize);
   w[kDepth] = geometry_.depth;
   w[kRegularDepth] = regularDepth_;
   w[kResets] = std::int64_t(stats_.geometryResets);
@@ -846,7 +836,7 @@ AdaptiveGridOptions AdaptiveGrid::serialisedOptions(const std::int64_t* words, s
       type != std::int64_t(GridType::Reluctant))
     badData("unknown grid type");
   o.type = GridType(type);
-  o.epsilon = doubleOf(words[kEpsilon]);
+  o.epsilon = doubleOfWord(words[kEpsilon]);
   if (words[kMaxLevel] < 0 || words[kMaxLevel] > kMaxSpacetreeLevel) badData("bad maxlevel");
   o.maxLevel = int(words[kMaxLevel]);
   if (words[kShock] < 0 || words[kShock] > std::numeric_limits<int>::max() || words[kThreshold] < 0 ||
@@ -854,7 +844,7 @@ AdaptiveGridOptions AdaptiveGrid::serialisedOptions(const std::int64_t* words, s
     badData("bad shock or threshold");
   o.shock = int(words[kShock]);
   o.coarseningThreshold = int(words[kThreshold]);
-  o.padding = doubleOf(words[kPadding]);
+  o.padding = doubleOfWord(words[kPadding]);
   o.pairsFromCaller = words[kPairsFromCaller] != 0;
   return o;
 }
@@ -879,8 +869,8 @@ AdaptiveGrid AdaptiveGrid::deserialise(const std::int64_t* words, std::size_t co
   if (depth < 0 || depth > grid.options_.maxLevel || regularDepth < 0 || regularDepth > depth)
     badData("bad depth");
   grid.haveGeometry_ = haveGeometry;
-  for (int d = 0; d < 3; ++d) grid.geometry_.origin[d] = doubleOf(words[kOrigin0 + d]);
-  grid.geometry_.rootSize = doubleOf(words[kRootSize]);
+  for (int d = 0; d < 3; ++d) grid.geometry_.origin[d] = doubleOfWord(words[kOrigin0 + d]);
+  grid.geometry_.rootSize = doubleOfWord(words[kRootSize]);
   grid.geometry_.depth = int(depth);
   if (haveGeometry && !(grid.geometry_.rootSize > 0.0 && std::isfinite(grid.geometry_.rootSize)))
     badData("bad root cube");
