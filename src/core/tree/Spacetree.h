@@ -244,9 +244,6 @@ class Spacetree {
   SpacetreeStatistics stats_;
 };
 
-inline constexpr std::array<std::int64_t, kMaxSpacetreeLevel + 1> kPowersOfThree{
-    1, 3, 9, 27, 81, 243, 729, 2187, 6561, 19683, 59049, 177147, 531441};
-
 // The 13 neighbour offsets that are lexicographically positive: each unordered pair of
 // vertex-connected vertices is visited from exactly one side.
 inline constexpr std::array<std::array<int, 3>, 13> kForwardNeighbourOffsets{{
