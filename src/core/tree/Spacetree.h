@@ -97,6 +97,11 @@ class Spacetree {
 
   // Counters of the last build() and forEachCandidatePair().
   const SpacetreeStatistics& statistics() const { return stats_; }
+  // Mesh size of the finest level that hosts a particle in the last build (0 when none does):
+  // the smallest cell a particle may cross in one time step.
+  double finestPopulatedMeshSize() const {
+    return stats_.deepestPopulatedLevel >= 0 ? meshSize(stats_.deepestPopulatedLevel) : 0.0;
+  }
 
  private:
   struct Vertex {
