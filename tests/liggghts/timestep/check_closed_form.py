@@ -21,8 +21,8 @@ CASE
                 in.wall_rollback: after the first contact step it is vx*dt of the redone step).
   rollback_history[:NP] the pair's tangential history restored before the redo (deck
                 in.pair_rollback: a sphere sliding onto a held one; after the first contact step,
-                rolled back, the history is vt*dt of the redone step); on 2 ranks the pair straddles
-                the rank boundary and the run equals the 1-rank one.
+                rolled back, the history is vt*dt of the redone step) and the contact counted once;
+                on 2 ranks the pair straddles the rank boundary and the run equals the 1-rank one.
   mesh_wall[:NP] a sphere dropped on a two-triangle STL floor (fix wall/gran ... mesh) and on the
                 same floor as a primitive wall (deck in.wall_kinds): the fix sees the mesh
                 contact as it sees the primitive one (same steps, same trajectory), so the
@@ -296,6 +296,10 @@ def main():
                  math.sqrt(sum(c * c for c in hist[first])), math.sqrt(sum(c * c for c in hist[first])) / size))
         check(rb[first] > rb[first - 1], "the first contact step was rolled back")
         check(err <= 1e-9, "the pair history after the redo is the redone step's vt*dt alone (relative error %.2e)" % err)
+        # f_ID[9]: the pair counts once, also where it is computed on both ranks (half on each)
+        touching = [col("f_dtv[9]")[k] for k in range(len(rows)) if gap[k] < 0.0]
+        check(touching and all(c == 1.0 for c in touching),
+              "f_ID[9] counts the contact once at each of its %d steps" % len(touching))
         if nprocs > 1:
             one = pair_run("pair_rollback_1rank", 1)
             worst = max(abs(p - q) / max(1e-12, abs(p)) for rp, rq in zip(one[1], rows) for p, q in zip(rp, rq)) \
