@@ -154,7 +154,11 @@ def main():
     ap.add_argument("--results", default=RESULTS)
     ap.add_argument("--callgrind-steps", type=int, default=100,
                     help="steps of the instruction count under valgrind (0: skip it)")
+    ap.add_argument("--replot", action="store_true", help="only redraw feature_cost.png from the CSVs in --results")
     args = ap.parse_args()
+    if args.replot:
+        plot(args.results)
+        return
 
     for name, exe in (("full", args.full), ("bare", args.bare)):
         if not os.access(exe, os.X_OK):
@@ -295,10 +299,13 @@ def main():
                   % (name, args.callgrind_steps, instructions[name] / instructions["bare"],
                      instructions[name] - instructions["bare"]))
 
-    plot(args, configs, by, ratio_rows)
+    plot(args.results)
 
 
-def plot(args, configs, by, ratio_rows):
+def plot(results):
+    """Draws feature_cost.png from the CSVs in `results`: the paired ratios to `bare` of every
+    repetition (loop and CPU time) against the 2 % band, and the instruction ratio when the
+    summary has one (callgrind: the load-independent measure)."""
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -306,41 +313,60 @@ def plot(args, configs, by, ratio_rows):
     except ImportError:
         print("feature_cost: matplotlib missing, no PNG")
         return
-    names = [n for n, _, _ in configs]
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    runs = list(csv.DictReader(open(os.path.join(results, "feature_cost.csv"))))
+    lines = open(os.path.join(results, "feature_cost_summary.csv")).read().splitlines()
+    header = lines[0].lstrip("# ")
+    instructions = {}
+    for k, line in enumerate(lines):
+        if line.startswith("config,callgrind_steps"):
+            for row in csv.reader(lines[k + 1:]):
+                if len(row) == 4:
+                    instructions[row[0]] = float(row[3])
+    names = [n for n in dict.fromkeys(r["config"] for r in runs) if n != "bare"]
+    bare = {r["rep"]: r for r in runs if r["config"] == "bare"}
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.4), gridspec_kw={"width_ratios": (2, 1)})
     ax = axes[0]
-    keys = [("loop_s", "loop"), ("pair_s", "Pair"), ("neigh_s", "Neigh")]
-    width = 0.8 / len(names)
+    positions, data, labels = [], [], []
     for i, name in enumerate(names):
-        for j, (key, _) in enumerate(keys):
-            vals = [r[key] for r in by[name]]
-            x = j + (i - (len(names) - 1) / 2) * width
-            ax.bar(x, statistics.median(vals), width * 0.9, color="C%d" % i,
-                   label=name if j == 0 else None, alpha=0.8)
-            ax.plot([x] * len(vals), vals, "k.", ms=3)
-    ax.set_xticks(range(len(keys)))
-    ax.set_xticklabels([lbl for _, lbl in keys])
-    ax.set_ylabel("time per run [s] (bars: median, dots: runs)")
-    ax.set_title("%d spheres, %d steps, %d rank(s)" % (23012, args.steps, args.np))
-    ax.legend()
-    ax = axes[1]
-    for i, name in enumerate([n for n in names if n != "bare"]):
-        a = {r["rep"]: r["loop_s"] for r in by[name]}
-        b = {r["rep"]: r["loop_s"] for r in by["bare"]}
-        reps = sorted(a)
-        ax.plot(reps, [a[k] / b[k] for k in reps], "o-", color="C%d" % names.index(name),
-                label="%s / bare (loop time)" % name)
+        for j, key in enumerate(("loop_s", "cpu_s")):
+            ratios = [float(r[key]) / float(bare[r["rep"]][key]) for r in runs
+                      if r["config"] == name and r["rep"] in bare]
+            positions.append(3 * i + j)
+            data.append(ratios)
+            labels.append("%s / bare\n%s" % (name, "loop time" if key == "loop_s" else "CPU time"))
+            ax.plot([3 * i + j] * len(ratios), ratios, "k.", ms=3, alpha=0.5)
+            ax.text(3 * i + j + 0.3, statistics.median(ratios), "%.3f" % statistics.median(ratios),
+                    va="center", fontsize=8)
+    ax.boxplot(data, positions=positions, widths=0.5, showfliers=False)
+    ax.set_xticks(positions)
+    ax.set_xticklabels(labels, fontsize=8)
     ax.axhspan(0.98, 1.02, color="0.85", label="within 2 %")
     ax.axhline(1.0, color="k", lw=0.8)
-    ax.set_xlabel("repetition")
-    ax.set_ylabel("paired ratio")
-    ax.set_title("cost of compiled-in / named features")
-    ax.legend()
+    ax.set_ylabel("paired ratio (same repetition)")
+    ax.set_title("wall-clock ratios, every repetition (box: quartiles, number: median)", fontsize=9)
+    ax.legend(fontsize=8, loc="upper right")
+    ax = axes[1]
+    if instructions:
+        inst = [n for n in names if n in instructions]
+        bars = ax.bar(range(len(inst)), [instructions[n] for n in inst], color="tab:blue")
+        for bar, n in zip(bars, inst):
+            ax.text(bar.get_x() + bar.get_width() / 2, instructions[n], "%.6f" % instructions[n],
+                    ha="center", va="bottom", fontsize=8)
+        ax.set_xticks(range(len(inst)))
+        ax.set_xticklabels(["%s / bare" % n for n in inst], fontsize=8)
+        ax.set_ylim(0.9, max(1.15, 1.03 * max(instructions[n] for n in inst)))
+        ax.axhline(1.0, color="k", lw=0.8)
+        ax.set_ylabel("instructions in the time loop / bare")
+        ax.set_title("work (callgrind instruction count)", fontsize=9)
+    else:
+        ax.axis("off")
+        ax.text(0.5, 0.5, "no instruction count in this run\n(--callgrind-steps 0)", ha="center",
+                va="center")
+    fig.suptitle("Feature cost, sphere deck: " + header, fontsize=8)
     fig.tight_layout()
-    out = os.path.join(args.results, "feature_cost.png")
+    out = os.path.join(results, "feature_cost.png")
     fig.savefig(out, dpi=120)
     print("wrote %s" % out)
-
 
 if __name__ == "__main__":
     main()

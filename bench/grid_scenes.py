@@ -137,6 +137,67 @@ def run(exe, work, data, nstyle, grid, steps, tag):
     return res
 
 
+def plot(results, name):
+    """Draws <name>.png from <name>.csv and <name>_summary.csv: time per step, the ratio to the
+    regular grid per repeat (the figure the docs quote) and the grid cells."""
+    import csv
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = list(csv.DictReader(open(os.path.join(results, name + ".csv"))))
+    summary = list(csv.DictReader(open(os.path.join(results, name + "_summary.csv"))))
+    scenes = list(dict.fromkeys(r["scene"] for r in rows))
+    labels = [g or "bin" for _, g in CONFIGS]
+    value = lambda sc, lab, k: float(next(m for m in summary if m["scene"] == sc and m["config"] == lab)[k])
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    width = 0.8 / len(scenes)
+    colours = ["tab:blue", "tab:orange", "tab:green", "tab:red"]
+    for k, sc in enumerate(scenes):
+        shift = (k - 0.5 * (len(scenes) - 1)) * width
+        xs = [i + shift for i in range(len(labels))]
+        axes[0].bar(xs, [value(sc, lab, "ms_per_step") for lab in labels], width, label=sc,
+                    color=colours[k])
+        axes[2].bar(xs[1:], [value(sc, lab, "cells") for lab in labels[1:]], width, label=sc,
+                    color=colours[k])
+        # ratio to regular within each repeat (side by side in one round), every repeat drawn
+        for i, lab in enumerate(labels[2:], start=2):
+            ratios = []
+            for r in rows:
+                if r["scene"] != sc or r["config"] != lab:
+                    continue
+                reg = next(q for q in rows if q["scene"] == sc and q["config"] == "regular"
+                           and q["repeat"] == r["repeat"])
+                ratios.append(float(r["ms_per_step"]) / float(reg["ms_per_step"]))
+            axes[1].scatter([i - 2 + shift] * len(ratios), ratios, s=14, color=colours[k], alpha=0.6,
+                            label=sc if i == 2 else None)
+            axes[1].plot([i - 2 + shift - 0.35 * width, i - 2 + shift + 0.35 * width],
+                         [value(sc, lab, "ratio_to_regular")] * 2, color="k", lw=2)
+    axes[0].set_xticks(range(len(labels)))
+    axes[0].set_xticklabels(labels)
+    axes[0].set_yscale("log")
+    axes[0].set_ylabel("ms per step (median over repeats, no thermo)")
+    axes[0].set_title("time per step")
+    axes[1].axhline(1.0, color="gray", lw=0.8, ls=":")
+    axes[1].set_xticks(range(len(labels) - 2))
+    axes[1].set_xticklabels(labels[2:])
+    axes[1].set_ylabel("time per step / regular grid's (same repeat)")
+    axes[1].set_title("ratio to the regular grid (dots: repeats, bar: median)")
+    axes[2].set_xticks(range(1, len(labels)))
+    axes[2].set_xticklabels(labels[1:])
+    axes[2].set_yscale("log")
+    axes[2].set_ylabel("grid cells (all levels, median per step)")
+    axes[2].set_title("grid cells")
+    for ax in axes:
+        ax.legend(fontsize=8)
+        ax.grid(True, axis="y", which="both", alpha=0.3)
+    nsmall = max(int(r["atoms"]) for r in rows)
+    fig.suptitle("clustered and sparse polydisperse scenes (up to %d spheres), 1 rank, lists rebuilt "
+                 "every step" % nsmall)
+    fig.tight_layout()
+    fig.savefig(os.path.join(results, name + ".png"), dpi=120)
+    print("wrote %s" % os.path.join(results, name + ".{csv,png}"))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "liggghts-spacetree"))
@@ -147,7 +208,11 @@ def main():
     ap.add_argument("--scenes", nargs="+", default=["clustered", "sparse"])
     ap.add_argument("--results", default=os.path.join(ROOT, "bench", "results"))
     ap.add_argument("--name", default="grid_scenes", help="file name stem of the results")
+    ap.add_argument("--replot", action="store_true", help="only redraw <name>.png from the stored CSVs")
     a = ap.parse_args()
+    if a.replot:
+        plot(a.results, a.name)
+        return 0
     work = os.path.join(ROOT, "build", "bench_" + a.name)
     os.makedirs(work, exist_ok=True)
     os.makedirs(a.results, exist_ok=True)
@@ -204,32 +269,7 @@ def main():
               "  update %7.3g ms" % (m["scene"], m["config"], m["ms_per_step"], m["ratio_to_regular"],
                                      m["neigh_ms_per_step"], m["cells"], m["comparisons"], m["update_ms"]))
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-    labels = [g or "bin" for _, g in CONFIGS]
-    width = 0.8 / len(a.scenes)
-    for k, sc in enumerate(a.scenes):
-        ms = [next(m for m in summary if m["scene"] == sc and m["config"] == lab)["ms_per_step"] for lab in labels]
-        cells = [next(m for m in summary if m["scene"] == sc and m["config"] == lab)["cells"] for lab in labels]
-        xs = [i + (k - 0.5 * (len(a.scenes) - 1)) * width for i in range(len(labels))]
-        axes[0].bar(xs, ms, width, label=sc)
-        axes[1].bar(xs[1:], cells[1:], width, label=sc)
-    axes[0].set_xticks(range(len(labels)))
-    axes[0].set_xticklabels(labels)
-    axes[0].set_yscale("log")
-    axes[0].set_ylabel("ms per step (median, no thermo)")
-    axes[0].legend()
-    axes[1].set_xticks(range(1, len(labels)))
-    axes[1].set_xticklabels(labels[1:])
-    axes[1].set_yscale("log")
-    axes[1].set_ylabel("grid cells (all levels, median per step)")
-    axes[1].legend()
-    fig.suptitle("clustered and sparse polydisperse scenes (%d small spheres), 1 rank" % a.nsmall)
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.results, a.name + ".png"), dpi=120)
-    print("wrote %s" % os.path.join(a.results, a.name + ".{csv,png}"))
+    plot(a.results, a.name)
     return 0
 
 

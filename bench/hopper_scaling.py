@@ -238,9 +238,51 @@ def fmt(v):
     return ("%.6g" % v) if isinstance(v, float) else str(v)
 
 
+def plot(out, steps, repeats, neigh_every):
+    """Draws OUT.png from OUT_summary.csv: per configuration the wall time per step split into
+    pair, neighbour and the rest, with the speed-up over the first configuration."""
+    import csv
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    summary = [{k: (v if k == "grid" else float(v)) for k, v in row.items()}
+               for row in csv.DictReader(open(out + "_summary.csv"))]
+    nxs = list(dict.fromkeys(int(m["nx"]) for m in summary))
+    per = max(len([m for m in summary if m["nx"] == nx]) for nx in nxs)
+    fig, axes = plt.subplots(1, len(nxs), figsize=(max(4.5, 1.1 * per + 2.0) * len(nxs), 4.4), squeeze=False)
+    for ax, nx in zip(axes[0], nxs):
+        ms = [m for m in summary if m["nx"] == nx]
+        x = range(len(ms))
+        pair = [m["pair_s"] / steps for m in ms]
+        neigh = [m["neigh_s"] / steps for m in ms]
+        rest = [m["s_per_step"] - p - n for m, p, n in zip(ms, pair, neigh)]
+        ax.bar(x, pair, color="tab:blue", label="pair (triangle checks, forces)")
+        ax.bar(x, neigh, bottom=pair, color="tab:orange", label="neighbour lists")
+        ax.bar(x, rest, bottom=[p + n for p, n in zip(pair, neigh)], color="tab:gray",
+               label="rest (communication, integration)")
+        for i, m in enumerate(ms):
+            ax.text(i, m["s_per_step"], "%.2fx" % m["speedup"], ha="center", va="bottom", fontsize=8)
+        ax.set_xticks(list(x))
+        ax.set_xticklabels(["%d rank%s\n%d thread%s%s" % (m["ranks"], "s" * (m["ranks"] > 1), m["threads"],
+                                                          "s" * (m["threads"] > 1),
+                                                          "" if m["grid"] == "none" else "\ngrid " + m["grid"])
+                            for m in ms], fontsize=8)
+        ax.set_xlabel("MPI ranks x pair_style trimesh threads per rank")
+        ax.set_title("%d grains (nx %d); label: speed-up over the first bar" % (nx ** 3, nx), fontsize=9)
+        ax.set_ylabel("wall s per step (median of %d)" % repeats)
+        ax.set_ylim(0, 1.25 * max(m["s_per_step"] for m in ms))
+        ax.legend(fontsize=7, loc="upper left", framealpha=0.9)
+    fig.suptitle("hopper deck, %d steps%s" % (steps, ", lists rebuilt every %d" % neigh_every if neigh_every else ""),
+                 fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out + ".png", dpi=120)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--exe", required=True)
+    ap.add_argument("--exe")
+    ap.add_argument("--replot", action="store_true",
+                    help="only redraw OUT.png from OUT_summary.csv (give --out, --steps, --repeats as measured)")
     ap.add_argument("--sizes", type=ints, default=[1000], help="grain counts (nx = round(N^(1/3)))")
     ap.add_argument("--nx", type=ints, default=None, help="lattice sides instead of --sizes")
     ap.add_argument("--threads", type=ints, default=[1, 2])
@@ -264,6 +306,11 @@ def main():
     ap.add_argument("--keep", action="store_true", help="keep the working directory (decks, logs, meshes) and print every run's command line")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "hopper_scaling"))
     a = ap.parse_args()
+    if a.replot:
+        plot(a.out, a.steps, a.repeats, a.neigh_every)
+        return
+    if not a.exe:
+        ap.error("--exe is required (unless --replot)")
 
     nxs = a.nx if a.nx else [int(round(n ** (1.0 / 3.0))) for n in a.sizes]
     wd = tempfile.mkdtemp(prefix="hopper_scaling_")
@@ -312,30 +359,7 @@ def main():
         for m in summary:
             f.write(",".join(fmt(m[k]) for k in skeys) + "\n")
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, len(nxs), figsize=(max(4.0, 0.9 * len(configs) + 2.0), 4.0), squeeze=False)
-    for ax, nx in zip(axes[0], nxs):
-        ms = [m for m in summary if m["nx"] == nx]
-        x = range(len(ms))
-        pair = [m["pair_s"] / a.steps for m in ms]
-        neigh = [m["neigh_s"] / a.steps for m in ms]
-        rest = [m["s_per_step"] - p - n for m, p, n in zip(ms, pair, neigh)]
-        ax.bar(x, pair, color="tab:blue", label="pair")
-        ax.bar(x, neigh, bottom=pair, color="tab:orange", label="neigh")
-        ax.bar(x, rest, bottom=[p + n for p, n in zip(pair, neigh)], color="tab:gray", label="rest")
-        for i, m in enumerate(ms):
-            ax.text(i, m["s_per_step"], "%.2fx" % m["speedup"], ha="center", va="bottom", fontsize=7)
-        ax.set_xticks(list(x))
-        ax.set_xticklabels(["%s\n%dr x %dt" % (m["grid"], m["ranks"], m["threads"]) for m in ms], fontsize=7)
-        ax.set_title("%d grains (nx %d)" % (nx ** 3, nx), fontsize=9)
-        ax.set_ylabel("wall s per step (median of %d)" % a.repeats)
-        ax.legend(fontsize=7, loc="lower right", framealpha=0.9)
-    fig.suptitle("hopper deck, %d steps%s: grids, MPI ranks, pair_style trimesh threads" %
-                 (a.steps, ", lists rebuilt every %d" % a.neigh_every if a.neigh_every else ""), fontsize=9)
-    fig.tight_layout()
-    fig.savefig(a.out + ".png", dpi=120)
+    plot(a.out, a.steps, a.repeats, a.neigh_every)
     print("wrote %s.csv, %s_summary.csv, %s.png" % (a.out, a.out, a.out))
     if a.keep:
         print("runs in", wd)

@@ -147,7 +147,12 @@ def draw(a, x, y, z, t, pen, dstep):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 3, figsize=(15, 4.8))
+    # Two views on top, the history in two panels below sharing the step axis (no twin axes, so
+    # no legend or second scale covers a curve).
+    fig = plt.figure(figsize=(13, 9))
+    grid = fig.add_gridspec(2, 2, height_ratios=(1.2, 1))
+    ax = [fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1]), fig.add_subplot(grid[1, 0])]
+    ax.append(fig.add_subplot(grid[1, 1], sharex=ax[2]))
     s = 4 * (a.radius / 0.0025) ** 2
     # side view: grain centres, hopper cross-section (inner wall) and floor top
     ax[0].scatter(x, z, s=s, c=y, cmap="viridis", edgecolors="none")
@@ -159,7 +164,7 @@ def draw(a, x, y, z, t, pen, dstep):
     ax[0].set_aspect("equal")
     ax[0].set_xlabel("x (m)")
     ax[0].set_ylabel("z (m)")
-    ax[0].set_title("side view at step %d (colour: y)" % dstep)
+    ax[0].set_title("side view at step %d (colour: y; dotted: outlet plane)" % dstep)
     ax[1].scatter(x, y, s=s, c=z, cmap="viridis", edgecolors="none")
     ax[1].add_patch(plt.Circle((0, 0), ro, fill=False, ls="--", color="k"))
     h = a.floor_half
@@ -167,20 +172,25 @@ def draw(a, x, y, z, t, pen, dstep):
     ax[1].set_aspect("equal")
     ax[1].set_xlabel("x (m)")
     ax[1].set_ylabel("y (m)")
-    ax[1].set_title("top view (colour: z; dashed: outlet)")
+    ax[1].set_title("top view (colour: z; dashed: outlet; square: floor)")
+    for view in ax[:2]:
+        view.xaxis.set_major_locator(plt.MaxNLocator(5))
     ax[2].semilogy(t[:, 0], np.maximum(t[:, 5], 1e-12), label="kinetic energy (J)")
     # largest penetration per thermo interval (the per-step record is too dense to draw)
     edges = np.searchsorted(pen[:, 0], t[:, 0])
     blocks = [pen[lo:hi, 1].max() if hi > lo else 0.0 for lo, hi in zip(edges[:-1], edges[1:])]
     ax[2].semilogy(t[1:, 0], np.maximum(np.array(blocks) / a.eps, 1e-12), lw=0.8,
-                   label="largest penetration / eps")
+                   label="largest penetration / eps (per thermo interval)")
     ax[2].set_ylim(1e-6, 2)
     ax[2].set_xlabel("step")
-    ax[2].legend(loc="lower left")
-    ax2 = ax[2].twinx()
-    ax2.plot(t[:, 0], t[:, 6], "g-")
-    ax2.set_ylabel("grains below the outlet", color="g")
-    ax[2].set_title("history")
+    ax[2].set_title("kinetic energy and largest penetration")
+    ax[2].legend(loc="upper right", fontsize=8, framealpha=0.9)
+    ax[3].plot(t[:, 0], t[:, 6], "g-")
+    ax[3].set_xlabel("step")
+    ax[3].set_ylabel("grains")
+    ax[3].set_title("grains below the outlet plane")
+    for panel in ax[2:]:
+        panel.grid(True, alpha=0.3)
     fig.tight_layout()
     fig.savefig(a.png, dpi=110)
     print("wrote", a.png)

@@ -25,14 +25,25 @@ FixStyle(adapt/timestep,FixAdaptTimestep)
 #define LMP_FIX_ADAPT_TIMESTEP_H
 
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 #include "dynamics/AdaptiveTimestep.h"
 #include "dynamics/TimestepRollback.h"
+#include "dynamics/TimestepStateSnapshot.h"
 #include "dynamics/TimestepVeto.h"
 #include "fix.h"
+#include "timestep_atom_state.h"
+#include "timestep_contact_history.h"
+#include "timestep_list_margin.h"
+#include "timestep_pair_scan.h"
+#include "timestep_wall_history.h"
 
 namespace LAMMPS_NS {
+
+/* The fix orchestrates: the contacts come from TimestepPairScan, the list look-ahead from
+   TimestepListMargin, the decisions from the core (nextTimestep, judgeStep), and a rollback
+   restores the TimestepStateSnapshot of the step's start. */
 
 class FixAdaptTimestep : public Fix {
  public:
@@ -50,18 +61,12 @@ class FixAdaptTimestep : public Fix {
   void unpack_comm(int, int, double *);
 
  private:
-  struct PairScan { double maxOverlap; double contacts; bool contactSoon; double contactSpeed; };
-  PairScan scan_pairs(spacetree::TimestepVeto *veto);
-  void choose_timestep(const PairScan &scan, double critical);
+  TimestepPairScan::Result scan_pairs(spacetree::TimestepVeto &veto);
+  void choose_timestep(const TimestepPairScan::Result &scan, double veto_limit_local);
   void set_dt(double dt);
-  bool rollback_and_redo(double dt_redo);
-  void save_state();
+  void collect_state_sources();
   bool restore_state();
-  void save_history();
-  void restore_history();
   void redo_step();
-  void track_list_build();
-  double list_margin();
 
   spacetree::TimestepPolicy policy;
   spacetree::RollbackPolicy rollback;
@@ -75,27 +80,14 @@ class FixAdaptTimestep : public Fix {
   double overlap_now, overlap_peak, contacts_now, contact_speed;
   bool warned_floor, warned_exhausted, warned_refused, redoing;
 
-  // state at the start of the current step (rollback)
-  bigint saved_step;
-  int nsaved;
-  std::vector<int> s_tag;
-  std::vector<double> s_x, s_v, s_omega, s_f, s_torque;
-  std::vector<tagint> s_image;   // atom->image is a tagint in LIGGGHTS 3.8
-  // tangential history of primitive walls (fix wall/gran ... primitive with a history model):
-  // per-atom fix property/atom "history_<wall-ID>", saved and restored with the atoms
-  std::vector<class FixPropertyAtom*> wall_histories;
-  int wall_values = 0;          // sum of their values per atom
-  std::vector<double> s_wall;
-  void find_wall_histories();
-  std::vector<int> h_flag;
-  std::vector<double> h_value;
-  int h_inum;
-  bigint h_step;
+  TimestepPairScan pair_scan;
+  TimestepListMargin list_margin;
 
-  // positions at the last neighbour-list build (Neighbor::xhold is not public)
-  std::vector<double> accel;   // f/m of owned and ghost atoms (vimpact: relative normal acceleration)
-  std::vector<double> x_build;
-  bigint x_build_step;
+  // rollback: the state the step started from, from every source that keeps a part of it
+  spacetree::TimestepStateSnapshot snapshot;
+  TimestepAtomState atom_state;
+  TimestepContactHistory contact_history;
+  std::vector<std::unique_ptr<TimestepWallHistory>> wall_histories;
 };
 
 }

@@ -15,6 +15,7 @@
 #include "neigh_spacetree.h"
 #include "neighbor.h"
 #include "tree/LeafCellVtk.h"
+#include "tree/WordPacking.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -227,9 +228,6 @@ enum RestartHeader {
   kRMagic, kRVersion, kRWords, kRType, kRShock, kRThreshold, kRMaxlevel, kRPadding, kRVtkEvery,
   kRVtkBytes, kRNprocs, kRGrid0, kRGrid1, kRGrid2, kRRanks, kRHeaderWords
 };
-
-std::int64_t word_of(double d) { std::int64_t w; memcpy(&w,&d,sizeof w); return w; }
-double double_of(std::int64_t w) { double d; memcpy(&d,&w,sizeof d); return d; }
 }
 
 void FixSpacetree::write_restart(FILE *fp)
@@ -269,7 +267,7 @@ void FixSpacetree::write_restart(FILE *fp)
     record[kRShock] = options.shock;
     record[kRThreshold] = options.coarseningThreshold;
     record[kRMaxlevel] = options.maxLevel;
-    record[kRPadding] = word_of(options.padding);
+    record[kRPadding] = spacetree::wordOfDouble(options.padding);
     record[kRVtkEvery] = vtk_every;
     record[kRVtkBytes] = (std::int64_t) vtk_file.size();
     record[kRNprocs] = nprocs;
@@ -353,7 +351,7 @@ void FixSpacetree::restart(char *buf)
   merge_int(kShock,"shock",options.shock,record[kRShock]);
   merge_int(kThreshold,"threshold",options.coarseningThreshold,record[kRThreshold]);
   merge_int(kMaxlevel,"maxlevel",options.maxLevel,record[kRMaxlevel]);
-  const double stored_padding = double_of(record[kRPadding]);
+  const double stored_padding = spacetree::doubleOfWord(record[kRPadding]);
   if (!given[kPadding]) {
     options.padding = stored_padding;
     from_file += " padding";

@@ -26,6 +26,10 @@ class NeighSpacetree {
   std::vector<int> fill;
   std::vector<int> neighbours;
   std::vector<int> pair_i, pair_j;
+
+  // Mesh size of the finest cell that hosts a particle at the last build (0 before any); with
+  // fix spacetree the tree is built on that grid's hosts, so it is the grid's finest such cell.
+  double finest_cell() const { return tree.finestPopulatedMeshSize(); }
 };
 
 }  // namespace LAMMPS_NS

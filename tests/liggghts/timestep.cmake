@@ -9,7 +9,7 @@ function(ts_test name driver case nprocs timeout)
   lg_driver_test("liggghts.${name}" "${driver}" "${case}" "${work}" ${timeout} ${nprocs})
 endfunction()
 
-foreach(case damped elastic rollback rollback_periodic rollback_tally mesh_wall vimpact)
+foreach(case damped elastic rollback rollback_periodic rollback_tally rollback_history mesh_wall vimpact)
   ts_test("timestep.${case}.1" "${_ts_dir}/check_closed_form.py" "${case}" 1 120)
   ts_test("timestep.${case}.2" "${_ts_dir}/check_closed_form.py" "${case}:2" 2 120)
 endforeach()

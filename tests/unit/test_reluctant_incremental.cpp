@@ -152,7 +152,7 @@ TEST(ReluctantIncremental, EqualsTheFullUpdateWithItsOwnPairSearch) {
 
 namespace {
 
-// serialise() layout (AdaptiveGrid.cpp): 19 header words (depth at 14, start-off depth at 15),
+// serialise() layout (AdaptiveGridSerialisation.cpp): 19 header words (depth at 14, start-off depth at 15),
 // then per level the refined cells, then per level the heat markers as (key, value) pairs.
 constexpr std::size_t kHeaderWords = 19;
 

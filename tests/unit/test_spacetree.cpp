@@ -319,3 +319,23 @@ TEST(Spacetree, CrowdedVerticesArePrunedAlongXAndStayExact) {
   // Without pruning each particle would be tested against about 14 x 1620 / 64 = 350 others.
   EXPECT_LT(tested, std::uint64_t(p.size()) * 120);
 }
+
+TEST(Spacetree, FinestPopulatedMeshSizeIsTheLevelOfTheSmallestParticle) {
+  Spacetree tree(SpacetreeOptions{0.001});
+  EXPECT_EQ(tree.finestPopulatedMeshSize(), 0.0) << "no build: no cell a particle lives in";
+  const Particles p = randomCloud(500, 1.0, 0.002, 0.2, 21, true);
+  tree.build(p.positions(), p.r.data(), p.size(), p.size());
+  const int smallest = int(std::min_element(p.r.begin(), p.r.end()) - p.r.begin());
+  int finest = 0;
+  for (int i = 0; i < p.size(); ++i) finest = std::max(finest, tree.levelOf(i));
+  EXPECT_EQ(finest, tree.levelOf(smallest));
+  EXPECT_GT(finest, 0) << "the scene must span several levels";
+  EXPECT_EQ(tree.finestPopulatedMeshSize(), tree.meshSize(finest));
+  EXPECT_GE(tree.finestPopulatedMeshSize(), 2.0 * (p.r[smallest] + 0.001));
+  // without its smallest particles the tree's finest populated level is coarser
+  Particles big;
+  for (int i = 0; i < p.size(); ++i)
+    if (p.r[i] > 0.05) big.add(p.x[i][0], p.x[i][1], p.x[i][2], p.r[i]);
+  tree.build(big.positions(), big.r.data(), big.size(), big.size());
+  EXPECT_GT(tree.finestPopulatedMeshSize(), 2.9 * tree.meshSize(finest));
+}

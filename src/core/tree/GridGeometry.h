@@ -4,8 +4,14 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+
+#include "tree/VertexKey.h"
 
 namespace spacetree {
+
+inline constexpr std::array<std::int64_t, kMaxSpacetreeLevel + 1> kPowersOfThree{
+    1, 3, 9, 27, 81, 243, 729, 2187, 6561, 19683, 59049, 177147, 531441};
 
 struct GridGeometry {
   std::array<double, 3> origin{0.0, 0.0, 0.0};  // lower corner of the root cube
@@ -29,6 +35,18 @@ inline void chooseRootCube(double finestNeed, double rootNeed, int maxLevel, Gri
   if (root < rootNeed) root = rootNeed;
   geometry.rootSize = root;
   geometry.depth = depth;
+}
+
+// Mesh size of `level` in a root cube of edge rootSize: every level splits its cells in 3 per
+// axis. The tree and the persistent grid compute it alike, so they agree on cells and vertices.
+inline double meshSizeOfLevel(double rootSize, int level) { return rootSize / double(kPowersOfThree[level]); }
+
+// Index along one axis of the vertex nearest to coordinate x on a level (origin: the cube's
+// lower corner there; inverseMeshSize = 1 / mesh size). Coordinates inside the cube are >= 0,
+// so the truncation rounds to nearest. The tree keys particles and the grid derives hosts with
+// this one rounding, so both put a particle on the same vertex.
+inline std::int64_t nearestVertexCoordinate(double x, double origin, double inverseMeshSize) {
+  return std::int64_t((x - origin) * inverseMeshSize + 0.5);
 }
 
 }  // namespace spacetree

@@ -71,7 +71,7 @@ void Spacetree::resetLevels(const std::array<double, 3>& origin, double rootSize
   levels_.resize(std::size_t(depth) + 1);
   stats_.levels.resize(levels_.size());
   for (int l = 0; l <= depth; ++l) {
-    levels_[l].meshSize = rootSize / double(kPowersOfThree[l]);
+    levels_[l].meshSize = meshSizeOfLevel(rootSize, l);
     stats_.levels[l].meshSize = levels_[l].meshSize;
   }
 }
@@ -152,9 +152,9 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
     }
     particleLevel_[i] = l;
     const double inv = 1.0 / levels_[l].meshSize;
-    const std::int64_t vi = std::int64_t((x[i][0] - origin_[0]) * inv + 0.5);
-    const std::int64_t vj = std::int64_t((x[i][1] - origin_[1]) * inv + 0.5);
-    const std::int64_t vk = std::int64_t((x[i][2] - origin_[2]) * inv + 0.5);
+    const std::int64_t vi = nearestVertexCoordinate(x[i][0], origin_[0], inv);
+    const std::int64_t vj = nearestVertexCoordinate(x[i][1], origin_[1], inv);
+    const std::int64_t vk = nearestVertexCoordinate(x[i][2], origin_[2], inv);
     sortKeys_[i] = KeyedIndex{levelVertexKey(l, packVertexKey(vi, vj, vk)), i};
   }
   radixSortByKey(sortKeys_, sortScratch_);

@@ -97,6 +97,11 @@ class Spacetree {
 
   // Counters of the last build() and forEachCandidatePair().
   const SpacetreeStatistics& statistics() const { return stats_; }
+  // Mesh size of the finest level that hosts a particle in the last build (0 when none does):
+  // the smallest cell a particle may cross in one time step.
+  double finestPopulatedMeshSize() const {
+    return stats_.deepestPopulatedLevel >= 0 ? meshSize(stats_.deepestPopulatedLevel) : 0.0;
+  }
 
  private:
   struct Vertex {
@@ -243,9 +248,6 @@ class Spacetree {
 
   SpacetreeStatistics stats_;
 };
-
-inline constexpr std::array<std::int64_t, kMaxSpacetreeLevel + 1> kPowersOfThree{
-    1, 3, 9, 27, 81, 243, 729, 2187, 6561, 19683, 59049, 177147, 531441};
 
 // The 13 neighbour offsets that are lexicographically positive: each unordered pair of
 // vertex-connected vertices is visited from exactly one side.

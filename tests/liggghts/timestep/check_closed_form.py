@@ -19,6 +19,10 @@ CASE
                 pressure equals kn*delta*d/V at every contact step, rolled back ones included),
                 and a primitive wall's tangential history restored before the redo (deck
                 in.wall_rollback: after the first contact step it is vx*dt of the redone step).
+  rollback_history[:NP] the pair's tangential history restored before the redo (deck
+                in.pair_rollback: a sphere sliding onto a held one; after the first contact step,
+                rolled back, the history is vt*dt of the redone step) and the contact counted once;
+                on 2 ranks the pair straddles the rank boundary and the run equals the 1-rank one.
   mesh_wall[:NP] a sphere dropped on a two-triangle STL floor (fix wall/gran ... mesh) and on the
                 same floor as a primitive wall (deck in.wall_kinds): the fix sees the mesh
                 contact as it sees the primitive one (same steps, same trajectory), so the
@@ -31,6 +35,7 @@ CASE
 Exit status 0 = pass, 1 = fail.
 """
 import argparse
+import math
 import os
 import sys
 
@@ -252,6 +257,55 @@ def main():
               % (rows[first][0], rb[first] - rb[first - 1], used, sx[first], ratio))
         check(rb[first] > rb[first - 1], "the first contact step was rolled back")
         check(abs(ratio - 1.0) <= 1e-9, "the wall history after the redo is the redone step's vx*dt alone")
+    elif case == "rollback_history":
+        # pair gran's tangential history lives in the history list's pages: the redone first contact
+        # step must not keep the rejected step's increment (that would make it (dt_rejected + dt_redo) vt)
+        def pair_run(name, np_):
+            rc, out, log = lg.run_deck(a.exe, os.path.join(HERE, "in.pair_rollback"), a.workdir, name,
+                                       {"procs": "%d 1 1" % np_}, nprocs=np_, mpiexec=a.mpiexec)
+            if rc != 0:
+                print(out[-3000:])
+                return None
+            return lg.thermo(log)
+        t = pair_run("pair_rollback", nprocs)
+        check(t is not None, "pair rollback deck finished on %d rank(s)" % nprocs)
+        if t is None:
+            return 1
+        names, rows = t
+        col = lambda n: lg.column(names, rows, n)  # noqa: E731
+        t_, gap, rb = col("Time"), col("v_gap"), col("f_dtv[5]")
+        x = list(zip(col("v_x"), col("v_y"), col("v_z")))        # the sliding sphere; the held one at 0
+        v = list(zip(col("v_vx"), col("v_vy"), col("v_vz")))
+        hist = list(zip(col("c_hist[1]"), col("c_hist[2]"), col("c_hist[3]")))
+        first = next((k for k in range(1, len(rows)) if gap[k] < 0.0), None)
+        check(first is not None, "the spheres touched")
+        if first is None:
+            return 1
+        used = t_[first] - t_[first - 1]
+        # the force of the contact step is evaluated at the step's end positions with the velocity
+        # of the step before (no force acted before the contact); compute pair/gran/local reports
+        # the pair under the held sphere (higher ID), whose relative velocity is -v
+        r = math.sqrt(sum(c * c for c in x[first]))
+        n = [c / r for c in x[first]]
+        vn = sum(a_ * b_ for a_, b_ in zip(v[first - 1], n))
+        expect = [-(v[first - 1][d] - vn * n[d]) * used for d in range(3)]
+        size = math.sqrt(sum(c * c for c in expect))
+        err = math.sqrt(sum((h - e) ** 2 for h, e in zip(hist[first], expect))) / size
+        print("  first contact step %d: %d rollback(s), dt %.6g, |history| %.6g = %.9f * |vt| dt"
+              % (rows[first][0], rb[first] - rb[first - 1], used,
+                 math.sqrt(sum(c * c for c in hist[first])), math.sqrt(sum(c * c for c in hist[first])) / size))
+        check(rb[first] > rb[first - 1], "the first contact step was rolled back")
+        check(err <= 1e-9, "the pair history after the redo is the redone step's vt*dt alone (relative error %.2e)" % err)
+        # f_ID[9]: the pair counts once, also where it is computed on both ranks (half on each)
+        touching = [col("f_dtv[9]")[k] for k in range(len(rows)) if gap[k] < 0.0]
+        check(touching and all(c == 1.0 for c in touching),
+              "f_ID[9] counts the contact once at each of its %d steps" % len(touching))
+        if nprocs > 1:
+            one = pair_run("pair_rollback_1rank", 1)
+            worst = max(abs(p - q) / max(1e-12, abs(p)) for rp, rq in zip(one[1], rows) for p, q in zip(rp, rq)) \
+                if one else float("inf")
+            check(one is not None and len(one[1]) == len(rows) and worst <= 1e-12,
+                  "the pair across the rank boundary gives the 1-rank run (worst relative difference %.2e)" % worst)
     elif case == "mesh_wall":
         deck = os.path.join(HERE, "in.wall_kinds")
         tables = {}
