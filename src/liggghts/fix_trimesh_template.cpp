@@ -114,6 +114,7 @@ FixTrimeshTemplate::FixTrimeshTemplate(LAMMPS *lmp, int narg, char **arg) :
 
   bool any = false;
   obstacle_types_.assign(atom->ntypes+1,0);
+  moving_types_.assign(atom->ntypes+1,0);
   for (int t = 1; t <= atom->ntypes; t++) {
     any = any || templates_[t];
     obstacle_types_[t] = templates_[t] && templates_[t]->fixed;
@@ -237,6 +238,16 @@ void FixTrimeshTemplate::pre_neighbor()
   state_->forward_shapes();
 }
 
+void FixTrimeshTemplate::set_moving(int t, bool moving)
+{
+  if (t >= 1 && t < static_cast<int>(moving_types_.size())) moving_types_[t] = moving;
+}
+
+bool FixTrimeshTemplate::is_moving(int t) const
+{
+  return t >= 1 && t < static_cast<int>(moving_types_.size()) && moving_types_[t];
+}
+
 void FixTrimeshTemplate::set_halo(double eps)
 {
   halo_ = eps;
@@ -274,6 +285,9 @@ void FixTrimeshTemplate::apply_to_atoms(bool initialise_poses)
     radius[i] = tt->boundingRadius + halo_;
     rmass[i] = tt->mass;
     if (density) density[i] = tt->density;
+    // a static obstacle's surface does not move, whatever a `velocity` command set
+    if (tt->fixed && !moving_types_[type[i]])
+      for (int k = 0; k < 3; k++) atom->v[i][k] = omega[i][k] = 0.0;
     const double n2 = quat[i][0]*quat[i][0] + quat[i][1]*quat[i][1] +
                       quat[i][2]*quat[i][2] + quat[i][3]*quat[i][3];
     // restart / earlier run: keep the pose; init() only refreshes radius and mass

@@ -29,7 +29,10 @@
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
+#include "trimesh_contact_body.h"
 #include "trimesh_parallel_contacts.h"
+#include "trimesh_wall_contacts.h"
+#include "contact/SphereMeshContact.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -37,21 +40,6 @@ namespace ct = spacetree::contact;
 namespace dy = spacetree::dynamics;
 
 namespace {
-
-// The core's view of atom i for the contact kinematics: pose, velocity, angular velocity
-// (as angular momentum; none without rotation), infinite mass for obstacles.
-dy::RigidBody body(const TrimeshTypeTemplate &tt, const ct::Pose &pose, const double *v,
-                   const double *omega, double rmass, bool rotation)
-{
-  dy::RigidBody b = tt.fixed ? dy::RigidBody::fixed(pose.position,pose.orientation)
-                             : dy::RigidBody::free(rmass,tt.inertia * (rmass / tt.mass),
-                                                   pose.position,pose.orientation);
-  if (!tt.fixed) {
-    b.velocity = Eigen::Vector3d(v[0],v[1],v[2]);
-    if (rotation) b.setAngularVelocity(Eigen::Vector3d(omega[0],omega[1],omega[2]));
-  }
-  return b;
-}
 
 // Upper limit of penalty Newton steps (stage 1 + stage 2): the core's kMaxNewtonIterations.
 const int kMaxNewtonSteps = spacetree::geometry::kMaxNewtonIterations;
@@ -71,6 +59,18 @@ struct PairTrimeshModel {
   std::unique_ptr<TrimeshParallelContacts> search;
   std::vector<TrimeshCandidatePair> pairs;
   ct::MeshContactStatistics stats;
+
+  // Spheres (types without template) against grains and obstacles: candidates (a: the body,
+  // b: the sphere), searched on the calling thread, and their contacts (offsets per candidate).
+  std::unique_ptr<ct::SphereMeshContactFinder> spheres;
+  std::vector<TrimeshCandidatePair> sphere_pairs;
+  std::vector<ct::ContactPoint> sphere_contacts;
+  std::vector<std::size_t> sphere_offsets;
+  std::vector<double> sphere_type_radius;      // per type without template: largest radius
+
+  // Grains against the walls of fix wall/gran (serially, after the pairs).
+  std::unique_ptr<TrimeshWallContacts> walls;
+  std::vector<TrimeshWallContact> wall_contacts;
 };
 }
 
@@ -198,6 +198,7 @@ void PairTrimesh::settings(int narg, char **arg)
     if (on_node > 1) threads = std::max(1,tbb_default/on_node);
   }
   model->search.reset(new TrimeshParallelContacts(model->contact,threads));
+  model->spheres.reset(new ct::SphereMeshContactFinder(model->contact));
   if (comm->me == 0 && screen) {
     if (method == ct::TriangleDistanceMethod::Hybrid)
       fprintf(screen,"pair_style trimesh: method hybrid, %d Newton steps%s%s\n",stage1,
@@ -245,6 +246,22 @@ void PairTrimesh::init_style()
   templ->set_halo(model->contact.epsilon);
   templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
 
+  // Types without template are spheres: they meet grains and obstacles here, each other through
+  // pair_style gran (pair_style hybrid; compute() stops at a touching pair of spheres); their
+  // largest radius sizes the cut-offs (insertion templates and existing atoms, as pair gran).
+  const int ntypes = atom->ntypes;
+  std::vector<double> mine(ntypes+1,0.0);
+  for (int t = 1; t <= ntypes; t++)
+    if (!templ->type_template(t))
+      for (int k = 0; k < modify->nfix; k++) mine[t] = std::max(mine[t],modify->fix[k]->max_rad(t));
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!templ->type_template(atom->type[i])) mine[atom->type[i]] = std::max(mine[atom->type[i]],atom->radius[i]);
+  model->sphere_type_radius.assign(ntypes+1,0.0);
+  MPI_Allreduce(mine.data(),model->sphere_type_radius.data(),ntypes+1,MPI_DOUBLE,MPI_MAX,world);
+
+  if (!model->walls) model->walls.reset(new TrimeshWallContacts(lmp));
+  model->walls->init(templ,model->contact);
+
   const int irequest = neighbor->request(this);
   neighbor->requests[irequest]->half = 0;
   neighbor->requests[irequest]->gran = 1;
@@ -257,9 +274,13 @@ void PairTrimesh::init_list(int, NeighList *ptr)
 
 double PairTrimesh::init_one(int i, int j)
 {
-  // bounding radius + eps of each type (fixed obstacles included): the gran list uses the
-  // per-atom radius; this cut-off sizes bins and the ghost shell
-  return templ->max_rad(i) + templ->max_rad(j);
+  // bounding radius + eps of each type (fixed obstacles included), the largest radius of a
+  // sphere type: the gran list uses the per-atom radius; this cut-off sizes bins and the ghost
+  // shell
+  const auto reach = [&](int t) {
+    return templ->type_template(t) ? templ->max_rad(t) : model->sphere_type_radius[t];
+  };
+  return reach(i) + reach(j);
 }
 
 void *PairTrimesh::extract(const char *name, int &dim)
@@ -285,12 +306,10 @@ void PairTrimesh::compute(int eflag, int vflag)
   // ghosts need the owners' current orientation (positions came with the regular comm)
   templ->state()->forward_orientations();
 
-  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega;
-  double **torque = atom->torque;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
   double *rmass = atom->rmass, *radius = atom->radius;
   int *type = atom->type, *tag = atom->tag;
   double **quat = templ->state()->quat;
-  const int nlocal = atom->nlocal;
   const bool rotation = model->rotation;
 
   model->stats = ct::MeshContactStatistics();
@@ -301,21 +320,44 @@ void PairTrimesh::compute(int eflag, int vflag)
   int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
 
+  model->sphere_pairs.clear();
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const TrimeshTypeTemplate *ti = templ->type_template(type[i]);
-    if (!ti) continue;
     int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const TrimeshTypeTemplate *tj = templ->type_template(type[j]);
-      if (!tj || (ti->fixed && tj->fixed)) continue;
+      if (ti && tj && ti->fixed && tj->fixed) continue;
 
       // bounding-sphere precheck on radius = R + eps: surfaces closer than 2 eps needs this
+      // (a sphere's radius is its outer surface: core r - eps plus the halo)
       const double dx = x[i][0]-x[j][0], dy = x[i][1]-x[j][1], dz = x[i][2]-x[j][2];
       const double radsum = radius[i] + radius[j];
       if (dx*dx + dy*dy + dz*dz >= radsum*radsum) continue;
+      if (!ti && !tj) {
+        char msg[512];
+        snprintf(msg,sizeof(msg),"Pair style trimesh: spheres %d and %d (types %d and %d have no "
+                 "template in fix trimesh/template) touch: sphere-sphere contacts need pair_style "
+                 "gran, e.g. 'pair_style hybrid gran ... trimesh ...' with 'pair_coeff %d %d gran'",
+                 tag[i],tag[j],type[i],type[j],std::min(type[i],type[j]),std::max(type[i],type[j]));
+        error->one(FLERR,msg);
+      }
+
+      const auto pose_of = [&](int k) {
+        ct::Pose p;
+        p.position = Eigen::Vector3d(x[k][0],x[k][1],x[k][2]);
+        if (templ->type_template(type[k]))
+          p.orientation = Eigen::Quaterniond(quat[k][0],quat[k][1],quat[k][2],quat[k][3]);
+        return p;
+      };
+      if (!ti || !tj) {   // a sphere against a grain or an obstacle: the body first
+        const int a = ti ? i : j, b = ti ? j : i;
+        const TrimeshTypeTemplate *ta = ti ? ti : tj;
+        model->sphere_pairs.push_back({a,b,&ta->shape,NULL,pose_of(a),pose_of(b)});
+        continue;
+      }
 
       // Canonical order, the same on every rank (with newton off a pair across two ranks is
       // computed on both): the body with more triangles first - the core searches in the first
@@ -325,13 +367,7 @@ void PairTrimesh::compute(int eflag, int vflag)
       const bool swap = nj > ni || (nj == ni && tag[j] < tag[i]);
       const int a = swap ? j : i, b = swap ? i : j;
       const TrimeshTypeTemplate *ta = swap ? tj : ti, *tb = swap ? ti : tj;
-
-      ct::Pose pa, pb;
-      pa.position = Eigen::Vector3d(x[a][0],x[a][1],x[a][2]);
-      pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
-      pb.position = Eigen::Vector3d(x[b][0],x[b][1],x[b][2]);
-      pb.orientation = Eigen::Quaterniond(quat[b][0],quat[b][1],quat[b][2],quat[b][3]);
-      model->pairs.push_back({a,b,&ta->shape,&tb->shape,pa,pb});
+      model->pairs.push_back({a,b,&ta->shape,&tb->shape,pose_of(a),pose_of(b)});
     }
   }
 
@@ -342,39 +378,86 @@ void PairTrimesh::compute(int eflag, int vflag)
     error->one(FLERR,(std::string("pair_style trimesh: contact search failed: ") + e.what()).c_str());
   }
 
+  // Spheres against bodies, serially (a few closest points per pair).
+  model->sphere_contacts.clear();
+  model->sphere_offsets.assign(1,0);
+  for (const TrimeshCandidatePair &p : model->sphere_pairs) {
+    if (!(radius[p.b] > model->contact.epsilon)) {
+      char msg[256];
+      snprintf(msg,sizeof(msg),"Pair style trimesh: sphere atom %d has radius %g m, not above eps "
+               "%g m (a sphere is a rigid core of radius r - eps plus the halo)",tag[p.b],radius[p.b],
+               model->contact.epsilon);
+      error->one(FLERR,msg);
+    }
+    model->spheres->find(*p.shape_a,p.pose_a,p.pose_b.position,radius[p.b],model->sphere_contacts,
+                         &model->stats);
+    model->sphere_offsets.push_back(model->sphere_contacts.size());
+  }
+
+  // Forces: grain pairs in list order, then sphere pairs.
+  const auto body_of = [&](int k, const ct::Pose &pose) {
+    return trimesh_contact_body(templ->type_template(type[k]),pose,v[k],omega[k],rmass[k],radius[k],
+                                rotation);
+  };
   for (std::size_t kp = 0; kp < model->pairs.size(); kp++) {
     const std::vector<ct::ContactPoint> &contacts = model->search->contacts(kp);
     if (contacts.empty()) continue;
-    {
-      const TrimeshCandidatePair &p = model->pairs[kp];
-      const int a = p.a, b = p.b;
-      const ct::Pose &pa = p.pose_a, &pb = p.pose_b;
-      const TrimeshTypeTemplate *ta = templ->type_template(type[a]), *tb = templ->type_template(type[b]);
-      dy::RigidBody ba = body(*ta,pa,v[a],omega[a],rmass[a],rotation);
-      dy::RigidBody bb = body(*tb,pb,v[b],omega[b],rmass[b],rotation);
-      // i is owned; j only where newton off lets this rank add to it
-      const bool a_owned = force->newton_pair || a < nlocal;
-      const bool b_owned = force->newton_pair || b < nlocal;
+    const TrimeshCandidatePair &p = model->pairs[kp];
+    const dy::RigidBody ba = body_of(p.a,p.pose_a), bb = body_of(p.b,p.pose_b);
+    for (const ct::ContactPoint &c : contacts) add_contact_force(p.a,ba,p.b,bb,c);
+  }
+  for (std::size_t kp = 0; kp < model->sphere_pairs.size(); kp++) {
+    const std::size_t begin = model->sphere_offsets[kp], end = model->sphere_offsets[kp+1];
+    if (begin == end) continue;
+    const TrimeshCandidatePair &p = model->sphere_pairs[kp];
+    const dy::RigidBody ba = body_of(p.a,p.pose_a), bb = body_of(p.b,p.pose_b);
+    for (std::size_t c = begin; c < end; c++) add_contact_force(p.a,ba,p.b,bb,model->sphere_contacts[c]);
+  }
 
-      for (const ct::ContactPoint &c : contacts) {
-        stat_max_penetration = std::max(stat_max_penetration,c.penetration);
-        const dy::ContactKinematics k = dy::contactKinematics(ba,bb,c);
-        const double fn = model->normal->normalForce(k);
-        Eigen::Vector3d fa = -fn * k.normal;     // on the first body; the second gets -fa
-        if (model->tangential) fa += model->tangential->forceOnFirst(k,fn);
-        if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
-        if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
-        if (rotation) {
-          if (a_owned) {
-            const Eigen::Vector3d tq = (c.point - pa.position).cross(fa);
-            torque[a][0] += tq[0]; torque[a][1] += tq[1]; torque[a][2] += tq[2];
-          }
-          if (b_owned) {
-            const Eigen::Vector3d tq = (c.point - pb.position).cross(-fa);
-            torque[b][0] += tq[0]; torque[b][1] += tq[1]; torque[b][2] += tq[2];
-          }
-        }
-      }
+  // Grains against walls (the grain first; a wall is a body of infinite mass moving with its
+  // surface velocity at the contact point).
+  if (!model->walls->empty()) {
+    model->walls->find(model->wall_contacts,model->stats);
+    for (const TrimeshWallContact &wc : model->wall_contacts) {
+      const int a = wc.atom;
+      ct::Pose pa;
+      pa.position = Eigen::Vector3d(x[a][0],x[a][1],x[a][2]);
+      pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
+      const dy::RigidBody ba = body_of(a,pa);
+      const Eigen::Vector3d fa = add_contact_force(a,ba,-1,trimesh_wall_body(wc.contact.point,wc.wall_velocity),
+                                                   wc.contact);
+      model->walls->report_to_mesh(wc,fa);
     }
   }
+}
+
+/* One contact by the pair style's law: the force on the first body a (its opposite on b, b < 0:
+   a wall, nothing to add) and the torques about each centre; only to atoms this rank owns
+   (newton off: a pair across two ranks is computed on both). */
+
+Eigen::Vector3d PairTrimesh::add_contact_force(int a, const dy::RigidBody &ba, int b,
+                                               const dy::RigidBody &bb, const ct::ContactPoint &c)
+{
+  double **f = atom->f, **torque = atom->torque;
+  const int nlocal = atom->nlocal;
+  const bool a_owned = a >= 0 && (force->newton_pair || a < nlocal);
+  const bool b_owned = b >= 0 && (force->newton_pair || b < nlocal);
+  stat_max_penetration = std::max(stat_max_penetration,c.penetration);
+  const dy::ContactKinematics k = dy::contactKinematics(ba,bb,c);
+  const double fn = model->normal->normalForce(k);
+  Eigen::Vector3d fa = -fn * k.normal;     // on the first body; the second gets -fa
+  if (model->tangential) fa += model->tangential->forceOnFirst(k,fn);
+  if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
+  if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
+  if (model->rotation) {
+    if (a_owned) {
+      const Eigen::Vector3d tq = (c.point - ba.position).cross(fa);
+      torque[a][0] += tq[0]; torque[a][1] += tq[1]; torque[a][2] += tq[2];
+    }
+    if (b_owned) {
+      const Eigen::Vector3d tq = (c.point - bb.position).cross(-fa);
+      torque[b][0] += tq[0]; torque[b][1] += tq[1]; torque[b][2] += tq[2];
+    }
+  }
+  return fa;
 }

@@ -29,6 +29,8 @@ PairStyle(trimesh,PairTrimesh)
 
 #include <memory>
 
+#include "contact/MeshContact.h"
+#include "dynamics/RigidBody.h"
 #include "pair.h"
 
 namespace LAMMPS_NS {
@@ -52,6 +54,12 @@ class PairTrimesh : public Pair {
   // Of the last compute, summed over ranks: contacts, body pairs tested, triangle pairs
   // checked, hybrid fallbacks; and the largest penetration (halo overlap eps - d/2, <= eps).
   void contact_statistics(double out[5]);
+  // Adds the force of contact c between a (first) and b (second; b < 0: a wall) by the pair
+  // style's law to the atoms this rank owns, with torques about ba's and bb's positions;
+  // returns the force on a.
+  Eigen::Vector3d add_contact_force(int a, const spacetree::dynamics::RigidBody &ba, int b,
+                         const spacetree::dynamics::RigidBody &bb,
+                         const spacetree::contact::ContactPoint &c);
 
  private:
   void allocate();
