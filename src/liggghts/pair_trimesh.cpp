@@ -1,5 +1,5 @@
 /* spacetree-dem: pair style for triangulated rigid particles (thin layer over the core's
-   MeshContactFinder and contact force). */
+   MeshContactFinder and ContactModel). */
 
 #include "pair_trimesh.h"
 
@@ -17,7 +17,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "contact/MeshContact.h"
-#include "dynamics/ContactForce.h"
+#include "contact_model/ContactModel.h"
 #include "dynamics/RigidBody.h"
 #include "error.h"
 #include "fix_trimesh_state.h"
@@ -37,6 +37,7 @@
 
 using namespace LAMMPS_NS;
 namespace ct = spacetree::contact;
+namespace cm = spacetree::contact_model;
 namespace dy = spacetree::dynamics;
 
 namespace {
@@ -52,8 +53,9 @@ struct PairTrimeshModel {
   double stiffness = 0.0, damping = 0.0;        // eq. (1): S, D
   double friction = 0.0, sliding_damping = 0.0; // Coulomb mu, viscous gamma
   bool rotation = true;
-  std::unique_ptr<dy::NormalSpringDashpot> normal;
-  std::unique_ptr<dy::CoulombFriction> tangential;   // only with friction
+  cm::ContactModelSpec spec;                    // sub-models (core contact_model/)
+  cm::ContactParameters parameters;             // their coefficients (every type pair)
+  cm::ContactModelTable models;                 // one per type pair, built at init
 
   int threads = 0;                              // threads keyword: 0 = TBB default, 1 = serial
   std::unique_ptr<TrimeshParallelContacts> search;
@@ -182,10 +184,20 @@ void PairTrimesh::settings(int narg, char **arg)
              "must be <= %d Newton steps",stage1,stage2,kMaxNewtonSteps);
     error->all(FLERR,msg);
   }
-  model->normal.reset(new dy::NormalSpringDashpot(model->stiffness,model->damping));
-  model->tangential.reset();
-  if (model->friction > 0.0 && model->sliding_damping > 0.0)
-    model->tangential.reset(new dy::CoulombFriction(model->friction,model->sliding_damping));
+  // the contact model: eq. (1), plus viscous friction with `friction MU GAMMA`
+  model->spec = cm::ContactModelSpec();
+  model->parameters = cm::ContactParameters();
+  model->parameters.set("stiffness",model->stiffness);
+  model->parameters.set("damping",model->damping);
+  if (model->friction > 0.0 && model->sliding_damping > 0.0) {
+    model->spec.tangential = "viscous";
+    model->parameters.set("friction",model->friction);
+    model->parameters.set("slidingDamping",model->sliding_damping);
+  }
+  try { cm::ContactModel probe(model->spec,model->parameters); }
+  catch (const std::exception &e) {
+    error->all(FLERR,(std::string("Illegal pair_style trimesh command: ") + e.what()).c_str());
+  }
   // threads 0: TBB's default is every core this process may use; ranks that share a node share
   // those cores, so each takes its part (no oversubscription with several ranks per node)
   int threads = model->threads, on_node = 1, tbb_default = 0;
@@ -243,6 +255,13 @@ void PairTrimesh::init_style()
       templ = static_cast<FixTrimeshTemplate*>(modify->fix[i]);
     }
   if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
+  try {
+    const cm::ContactParameters &p = model->parameters;
+    model->models = cm::ContactModelTable(atom->ntypes,model->spec,[&p](int,int) { return p; });
+  } catch (const std::exception &e) {
+    error->all(FLERR,(std::string("Pair style trimesh: ") + e.what()).c_str());
+  }
+
   templ->set_halo(model->contact.epsilon);
   templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
 
@@ -404,14 +423,15 @@ void PairTrimesh::compute(int eflag, int vflag)
     if (contacts.empty()) continue;
     const TrimeshCandidatePair &p = model->pairs[kp];
     const dy::RigidBody ba = body_of(p.a,p.pose_a), bb = body_of(p.b,p.pose_b);
-    for (const ct::ContactPoint &c : contacts) add_contact_force(p.a,ba,p.b,bb,c);
+    for (const ct::ContactPoint &c : contacts) add_contact_force(p.a,ba,type[p.a],p.b,bb,type[p.b],c);
   }
   for (std::size_t kp = 0; kp < model->sphere_pairs.size(); kp++) {
     const std::size_t begin = model->sphere_offsets[kp], end = model->sphere_offsets[kp+1];
     if (begin == end) continue;
     const TrimeshCandidatePair &p = model->sphere_pairs[kp];
     const dy::RigidBody ba = body_of(p.a,p.pose_a), bb = body_of(p.b,p.pose_b);
-    for (std::size_t c = begin; c < end; c++) add_contact_force(p.a,ba,p.b,bb,model->sphere_contacts[c]);
+    for (std::size_t c = begin; c < end; c++)
+      add_contact_force(p.a,ba,type[p.a],p.b,bb,type[p.b],model->sphere_contacts[c]);
   }
 
   // Grains against walls (the grain first; a wall is a body of infinite mass moving with its
@@ -424,8 +444,9 @@ void PairTrimesh::compute(int eflag, int vflag)
       pa.position = Eigen::Vector3d(x[a][0],x[a][1],x[a][2]);
       pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
       const dy::RigidBody ba = body_of(a,pa);
-      const Eigen::Vector3d fa = add_contact_force(a,ba,-1,trimesh_wall_body(wc.contact.point,wc.wall_velocity),
-                                                   wc.contact);
+      const Eigen::Vector3d fa =
+          add_contact_force(a,ba,type[a],-1,trimesh_wall_body(wc.contact.point,wc.wall_velocity),
+                            wc.wall_type,wc.contact);
       model->walls->report_to_mesh(wc,fa);
     }
   }
@@ -435,18 +456,18 @@ void PairTrimesh::compute(int eflag, int vflag)
    a wall, nothing to add) and the torques about each centre; only to atoms this rank owns
    (newton off: a pair across two ranks is computed on both). */
 
-Eigen::Vector3d PairTrimesh::add_contact_force(int a, const dy::RigidBody &ba, int b,
-                                               const dy::RigidBody &bb, const ct::ContactPoint &c)
+Eigen::Vector3d PairTrimesh::add_contact_force(int a, const dy::RigidBody &ba, int type_a, int b,
+                                               const dy::RigidBody &bb, int type_b,
+                                               const ct::ContactPoint &c)
 {
   double **f = atom->f, **torque = atom->torque;
   const int nlocal = atom->nlocal;
   const bool a_owned = a >= 0 && (force->newton_pair || a < nlocal);
   const bool b_owned = b >= 0 && (force->newton_pair || b < nlocal);
   stat_max_penetration = std::max(stat_max_penetration,c.penetration);
-  const dy::ContactKinematics k = dy::contactKinematics(ba,bb,c);
-  const double fn = model->normal->normalForce(k);
-  Eigen::Vector3d fa = -fn * k.normal;     // on the first body; the second gets -fa
-  if (model->tangential) fa += model->tangential->forceOnFirst(k,fn);
+  const cm::Contact k = cm::makeContact(ba,bb,c.point,c.normal,c.penetration);
+  // on the first body; the second gets -fa
+  const Eigen::Vector3d fa = model->models.at(type_a,type_b).evaluate(k,nullptr,update->dt).forceOnFirst;
   if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
   if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
   if (model->rotation) {
