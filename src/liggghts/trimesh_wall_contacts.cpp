@@ -17,6 +17,7 @@
 #include "fix_trimesh_state.h"
 #include "fix_trimesh_template.h"
 #include "fix_wall_gran.h"
+#include "contact/CylinderWallContact.h"
 #include "geometry/WallPatches.h"
 #include "modify.h"
 #include "neighbor.h"
@@ -41,7 +42,7 @@ struct TrimeshWallContacts::Wall {
   FixWallGran *fix = NULL;
   // primitive: its patch, plane (point, normal) or cylinder (point, axis, radius)
   bool primitive = false, cylinder = false;
-  geo::RigidShape patch, inward_patch;
+  geo::RigidShape patch;   // plane; cylinder: its outer side (inside: exact, by the vertices)
   Eigen::Vector3d point = Eigen::Vector3d::Zero(), direction = Eigen::Vector3d::UnitZ();
   double radius = 0.0;
   Eigen::Vector3d shear_velocity = Eigen::Vector3d::Zero();  // plane: translation
@@ -63,6 +64,7 @@ void TrimeshWallContacts::init(FixTrimeshTemplate *templ, const ct::MeshContactO
   templ_ = templ;
   eps_ = options.epsilon;
   finder_.reset(new ct::MeshContactFinder(options));
+  cylinder_.reset(new ct::CylinderWallContactFinder(options));
   for (auto &w : walls_)
     if (modify->find_fix(w->fix->id) >= 0) w->fix->exclude_types(NULL);
   walls_.clear();
@@ -117,9 +119,7 @@ void TrimeshWallContacts::init(FixTrimeshTemplate *templ, const ct::MeshContactO
           const double sagitta = std::min(1e-3 * eps_,0.5 * r);
           try {
             w->patch = geo::RigidShape::fromSurface(
-                geo::cylinderWallPatch(r,std::max(half_angle,1e-9),reach,sagitta,false));
-            w->inward_patch = geo::RigidShape::fromSurface(
-                geo::cylinderWallPatch(r,std::max(half_angle,1e-9),reach,sagitta,true));
+                geo::cylinderWallPatch(r,std::max(half_angle,1e-9),reach,sagitta));
           } catch (const std::exception &e) {
             error->all(FLERR,(std::string("Pair style trimesh: fix wall/gran ") + fwg->id + ": " + e.what()).c_str());
           }
@@ -172,22 +172,28 @@ void TrimeshWallContacts::find_primitive(Wall &w, std::vector<TrimeshWallContact
     if (!tt || tt->fixed) continue;
     const Eigen::Vector3d c(x[i][0],x[i][1],x[i][2]);
     // the bounding sphere (radius = R + eps) within eps of the wall
+    const ct::Pose pose = grain_pose(x[i],quat[i]);
     geo::WallPatchPlacement place;
-    const geo::RigidShape *patch = &w.patch;
+    scratch_.clear();
     if (w.cylinder) {
       place = geo::WallPatchPlacement::onCylinder(w.point,w.direction,c);
-      const double gap = std::abs((c - place.position).norm() - w.radius);
-      if (!(gap < radius[i] + eps_)) continue;
-      if ((c - place.position).norm() < w.radius) patch = &w.inward_patch;
+      const double rho = (c - place.position).norm();
+      if (!(std::abs(rho - w.radius) < radius[i] + eps_)) continue;
+      if (rho < w.radius) {   // inside: exact, by the grain's vertices
+        cylinder_->find(tt->shape,pose,w.point,w.direction,w.radius,scratch_,&stats);
+      } else {                // outside: the patch of the cylinder's outer side
+        const ct::Pose wall_pose{place.position + place.orientation * w.patch.centreOfMassInMesh,
+                                 place.orientation};
+        finder_->find(tt->shape,pose,w.patch,wall_pose,scratch_,&stats);
+      }
     } else {
       if (!(std::abs((c - w.point).dot(w.direction)) < radius[i] + eps_)) continue;
       place = geo::WallPatchPlacement::onPlane(w.point,w.direction,c);
+      // the patch's body frame sits at its mesh's box centre
+      const ct::Pose wall_pose{place.position + place.orientation * w.patch.centreOfMassInMesh,
+                               place.orientation};
+      finder_->find(tt->shape,pose,w.patch,wall_pose,scratch_,&stats);
     }
-    // the patch's body frame sits at its mesh's box centre
-    const ct::Pose wall_pose{place.position + place.orientation * patch->centreOfMassInMesh,
-                             place.orientation};
-    scratch_.clear();
-    finder_->find(tt->shape,grain_pose(x[i],quat[i]),*patch,wall_pose,scratch_,&stats);
     for (const ct::ContactPoint &cp : scratch_) {
       TrimeshWallContact wc;
       wc.atom = i;

@@ -1,11 +1,13 @@
 /* spacetree-dem: triangulated grains against the walls of fix wall/gran, by their surfaces
    (pair_style trimesh calls it each step; the contacts go through its contact law).
 
-   - Primitive walls (xplane/yplane/zplane, x/y/zcylinder): one triangulated patch per wall
-     (core geometry/WallPatches: a square, or a piece of the cylinder whose chords stay within
-     1e-3 eps of it), placed under each grain whose bounding sphere comes within 2 eps of the
-     wall; `shear dim v` moves the wall's surface (a plane along dim, a cylinder about its axis
-     when dim is not the axis), as fix wall/gran does for spheres.
+   - Primitive walls (xplane/yplane/zplane, x/y/zcylinder), for each grain whose bounding sphere
+     comes within 2 eps of the wall: a plane as a triangulated square placed under the grain
+     (core geometry/WallPatches); a grain inside a cylinder by its vertices (core
+     CylinderWallContact: exact), outside by a piece of the cylinder whose chords stay within
+     1e-3 eps of it (slower: many narrow facets); `shear dim v` moves the wall's surface (a plane
+     along dim, a cylinder about its axis when dim is not the axis), as fix wall/gran does for
+     spheres.
    - Mesh walls (fix mesh/surface ... + fix wall/gran mesh): the triangles this rank holds of
      each mesh (owned and ghost) as one core surface shape, rebuilt when the set changes and, for
      a mesh that fix move/mesh moves, every step; the wall's velocity at a contact is the mesh's
@@ -24,6 +26,7 @@
 
 #include <Eigen/Core>
 
+#include "contact/CylinderWallContact.h"
 #include "contact/MeshContact.h"
 #include "geometry/RigidShape.h"
 #include "pointers.h"
@@ -73,6 +76,7 @@ class TrimeshWallContacts : protected Pointers {
   std::vector<int> excluded_;   // per type: 1 for template types (the hook's flags)
   std::vector<std::unique_ptr<Wall>> walls_;
   std::unique_ptr<spacetree::contact::MeshContactFinder> finder_;
+  std::unique_ptr<spacetree::contact::CylinderWallContactFinder> cylinder_;
   double eps_;
   std::vector<spacetree::contact::ContactPoint> scratch_;
 };

@@ -1,15 +1,17 @@
-// Walls as triangulated patches (WallPatches.h, RigidShape::fromSurface): a grain meets a plane
-// patch exactly as it meets the top face of a box obstacle of the same surface; the patch goes
-// under the grain on either side; cylinder patches stay within their sagitta of the cylinder,
-// face the requested side, close into a ring; a grain inside a cylinder touches it where its
-// vertices are within 2 eps of the true surface.
+// Walls of a DEM deck for triangulated grains: a plane as a triangulated patch (WallPatches.h,
+// RigidShape::fromSurface) meets a grain exactly as the top face of a box obstacle of the same
+// surface, on either side; cylinder patches (the outer side) stay within their sagitta of the
+// cylinder and close into a ring; inside a cylinder (CylinderWallContact.h) the contacts are the
+// closest vertices, exactly.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
+#include "contact/CylinderWallContact.h"
 #include "contact/MeshContact.h"
 #include "geometry/DentedSphere.h"
 #include "geometry/PrimitiveMeshes.h"
@@ -84,60 +86,81 @@ TEST(WallPatches, PlanePatchMeetsAGrainAsABoxFloorDoes) {
 
 TEST(WallPatches, CylinderPatchesFollowTheCylinder) {
   const double R = 0.1, sag = 1e-7;
-  for (bool inward : {false, true})
-    for (double halfAngle : {0.2, 4.0}) {
-      const geometry::TriangleMesh m = geometry::cylinderWallPatch(R, halfAngle, 0.01, sag, inward);
-      double worstOff = 0.0;
-      for (std::size_t t = 0; t < m.triangleCount(); ++t) {
-        const geometry::Triangle tri = m.triangle(t);
-        for (const Vector3d& v : tri.vertex) EXPECT_NEAR(std::hypot(v.x(), v.y()), R, 1e-15);
-        const Vector3d c = (tri[0] + tri[1] + tri[2]) / 3.0;
-        const Vector3d n = m.areaVector(t).normalized();
-        const Vector3d radial = Vector3d(c.x(), c.y(), 0).normalized();
-        EXPECT_NEAR(n.dot(radial), inward ? -1.0 : 1.0, 1e-6);
-        // midpoint of the facet's chord across the azimuth
-        for (int k = 0; k < 3; ++k) {
-          const Vector3d mid = 0.5 * (tri[k] + tri[(k + 1) % 3]);
-          worstOff = std::max(worstOff, R - std::hypot(mid.x(), mid.y()));
-        }
+  for (double halfAngle : {0.2, 4.0}) {
+    const geometry::TriangleMesh m = geometry::cylinderWallPatch(R, halfAngle, 0.01, sag);
+    double worstOff = 0.0;
+    for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+      const geometry::Triangle tri = m.triangle(t);
+      for (const Vector3d& v : tri.vertex) EXPECT_NEAR(std::hypot(v.x(), v.y()), R, 1e-15);
+      const Vector3d c = (tri[0] + tri[1] + tri[2]) / 3.0;
+      const Vector3d n = m.areaVector(t).normalized();
+      EXPECT_NEAR(n.dot(Vector3d(c.x(), c.y(), 0).normalized()), 1.0, 1e-6);  // away from the axis
+      for (int k = 0; k < 3; ++k) {  // chord midpoints
+        const Vector3d mid = 0.5 * (tri[k] + tri[(k + 1) % 3]);
+        worstOff = std::max(worstOff, R - std::hypot(mid.x(), mid.y()));
       }
-      EXPECT_LE(worstOff, sag * (1 + 1e-6));
-      EXPECT_GT(worstOff, 0.25 * sag);
-      const RigidShape s = RigidShape::fromSurface(m);
-      int open = 0;
-      for (const auto& e : s.edgeApex)
-        for (int a : e) open += a < 0;
-      if (halfAngle > M_PI) EXPECT_EQ(open, 2 * int(m.triangleCount()) / 2 * 1);  // only the two rims
     }
-  EXPECT_THROW(geometry::cylinderWallPatch(R, 0.1, 0.01, R, false), std::invalid_argument);
+    EXPECT_LE(worstOff, sag * (1 + 1e-6));
+    EXPECT_GT(worstOff, 0.25 * sag);
+    // the whole circle closes: only the two rims are open edges
+    const RigidShape s = RigidShape::fromSurface(m);
+    int open = 0;
+    for (const auto& e : s.edgeApex)
+      for (int a : e) open += a < 0;
+    if (halfAngle > M_PI) EXPECT_EQ(open, int(m.triangleCount()));
+  }
+  EXPECT_THROW(geometry::cylinderWallPatch(R, 0.1, 0.01, R), std::invalid_argument);
   EXPECT_THROW(geometry::planeWallPatch(0.0), std::invalid_argument);
 }
 
-TEST(WallPatches, GrainInsideACylinderTouchesWhereItsVerticesAre) {
+// Inside a cylinder the contacts are the vertices that are local minima of the gap R - rho:
+// the deepest contact is the brute-force closest vertex; a contact exactly when a vertex is
+// within 2 eps; normals radial; the wall's axis in any direction and position.
+TEST(CylinderWallContact, DeepestContactIsTheClosestVertex) {
   const RigidShape g = grain();
-  const double R = 0.02, sag = 1e-3 * kEps;
-  const RigidShape inside = RigidShape::fromSurface(geometry::cylinderWallPatch(R, 1.0, 0.012, sag, true));
-  const Quaterniond q = Quaterniond(0.2, 0.9, -0.1, 0.3).normalized();
-  // the vertex farthest from the axis (z) when the grain sits at (x, 0, 0)
-  for (double gap : {0.3 * kEps, 1.2 * kEps}) {
-    double far = 0.0;
-    Vector3d centre(0, 0, 0.003);
-    // place the grain so that its farthest vertex is `gap` inside the cylinder along +x
-    double reach = 0.0;
-    for (const Vector3d& v : g.bodyMesh.vertices) reach = std::max(reach, (q * v).x());
-    centre.x() = R - gap - reach;
-    for (const Vector3d& v : g.bodyMesh.vertices) far = std::max(far, std::hypot((q * v + centre).x(), (q * v + centre).y()));
-    const double trueGap = R - far;
-    const geometry::WallPatchPlacement place =
-        geometry::WallPatchPlacement::onCylinder(Vector3d::Zero(), Vector3d::UnitZ(), centre);
+  const double R = 0.02;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int touching = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vector3d axis = Vector3d(u(rng), u(rng), u(rng)).normalized();
+    const Vector3d point(u(rng), u(rng), u(rng));
+    const Quaterniond q = Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized();
+    const Vector3d side = axis.unitOrthogonal();
+    // the grain near the wall: its closest vertex at a gap of about [0.2, 3] eps
+    const double target = kEps * (1.6 + 1.4 * u(rng));
+    const double along = 0.3 * u(rng);
+    const auto closestGap = [&](double d) {
+      double closest = 1e9;
+      for (const Vector3d& v : g.bodyMesh.vertices) {
+        const Vector3d r = q * v + along * axis + d * side;
+        closest = std::min(closest, R - (r - r.dot(axis) * axis).norm());
+      }
+      return closest;
+    };
+    double d = R - g.boundingRadius;
+    for (int k = 0; k < 4; ++k) d += closestGap(d) - target;
+    const Vector3d centre = point + along * axis + d * side;
+    const double closest = closestGap(d);
     std::vector<ContactPoint> contacts;
-    const Pose wall{place.position + place.orientation * inside.centreOfMassInMesh, place.orientation};
-    MeshContactFinder(options()).find(g, Pose{centre, q}, inside, wall, contacts);
-    ASSERT_FALSE(contacts.empty());
+    MeshContactStatistics stats;
+    contact::CylinderWallContactFinder(options()).find(g, Pose{centre, q}, point, axis, R, contacts, &stats);
+    EXPECT_EQ(!contacts.empty(), closest < 2 * kEps) << trial;
+    if (contacts.empty()) continue;
+    ++touching;
     double deepest = 0.0;
-    for (const ContactPoint& c : contacts) deepest = std::max(deepest, c.penetration);
-    EXPECT_NEAR(deepest, kEps - trueGap / 2, sag + 1e-12) << gap;
+    for (const ContactPoint& c : contacts) {
+      deepest = std::max(deepest, c.penetration);
+      const Vector3d r = c.point - point;
+      const Vector3d radial = (r - r.dot(axis) * axis).normalized();
+      EXPECT_LT((c.normal - radial).norm(), 1e-9);
+      // the point lies halfway between the vertex and the wall
+      EXPECT_NEAR((r - r.dot(axis) * axis).norm(), R - c.distance / 2, 1e-12);
+    }
+    EXPECT_NEAR(deepest, kEps - closest / 2, 1e-12);
   }
+  EXPECT_GT(touching, 40);
+  EXPECT_LT(touching, 200);
 }
 
 }  // namespace

@@ -18,8 +18,7 @@ TriangleMesh planeWallPatch(double halfWidth) {
   return m;
 }
 
-TriangleMesh cylinderWallPatch(double radius, double halfAngle, double halfLength, double sagitta,
-                               bool inward) {
+TriangleMesh cylinderWallPatch(double radius, double halfAngle, double halfLength, double sagitta) {
   if (!(radius > 0.0) || !(halfAngle > 0.0) || !(halfLength > 0.0) || !(sagitta > 0.0) ||
       !(sagitta < radius) || !std::isfinite(radius) || !std::isfinite(halfLength))
     throw std::invalid_argument(
@@ -38,13 +37,8 @@ TriangleMesh cylinderWallPatch(double radius, double halfAngle, double halfLengt
   for (int k = 0; k < facets; ++k) {
     const int a = 2 * k, b = 2 * ((k + 1) % columns);
     // (a, b, b + 1) has normal +radial: counter-clockwise seen from outside
-    if (inward) {
-      m.triangles.push_back({a, b + 1, b});
-      m.triangles.push_back({a, a + 1, b + 1});
-    } else {
-      m.triangles.push_back({a, b, b + 1});
-      m.triangles.push_back({a, b + 1, a + 1});
-    }
+    m.triangles.push_back({a, b, b + 1});
+    m.triangles.push_back({a, b + 1, a + 1});
   }
   return m;
 }

@@ -4,10 +4,11 @@
 // patch per wall, placed under each grain (WallPatchPlacement), large enough to hold every
 // surface point within reach of the grain.
 //   - plane: a square of half width h in z = 0, two triangles, normal +z;
-//   - cylinder: the surface at radius R about the z axis, azimuths [-a, a] around +x (the whole
-//     circle for a >= pi), z in [-h, h]; facets narrow enough that the chord stays within
-//     `sagitta` of the true surface (angle step 2 acos(1 - sagitta / R)); vertices on the
-//     surface. Normals +radial (`inward` false) or towards the axis (`inward` true).
+//   - cylinder (the convex side: a grain outside a pipe; inside, CylinderWallContact.h is exact
+//     and cheaper): the surface at radius R about the z axis, azimuths [-a, a] around +x (the
+//     whole circle for a >= pi), z in [-h, h], normals away from the axis; facets narrow enough
+//     that the chord stays within `sagitta` of the true surface (angle step
+//     2 acos(1 - sagitta / R)); vertices on the surface.
 #pragma once
 
 #include <Eigen/Core>
@@ -22,8 +23,7 @@ TriangleMesh planeWallPatch(double halfWidth);
 
 // Throws std::invalid_argument unless radius, halfAngle, halfLength, sagitta > 0 and
 // sagitta < radius.
-TriangleMesh cylinderWallPatch(double radius, double halfAngle, double halfLength, double sagitta,
-                               bool inward);
+TriangleMesh cylinderWallPatch(double radius, double halfAngle, double halfLength, double sagitta);
 
 // Where a wall's patch goes for a grain centred at c (the patch's frame: x_world = orientation
 // * x_patch + position).

@@ -1,0 +1,231 @@
+#!/usr/bin/env python3
+"""Rotating drum: 300 spheres and 300 dented grains in a closed drum obstacle turning at constant
+angular velocity (inputs/drum/in.drum, meshes and start lattice by inputs/drum/make_drum.py).
+Reports, per dumped frame, whether every particle is inside the cavity, the drum's rotation
+angle against omega t, and the bed's dynamic angle of repose; writes CSV and PNG.
+
+  drum.py [--exe build/liggghts-spacetree] [--np 1] [--turns 2] [--period 1.2] [--settle 10000]
+          [--dt 4e-5] [--every 1000] [--out bench/results/drum] [--workdir DIR] [--replot]
+
+Inside: the particle centre lies within the cavity (axisymmetric: radius from the y axis, |y|)
+shrunk by the particle's inscribed radius (spheres: their core, radius - eps; dented grains: the
+smallest radius of the dented sphere, 1.5 mm), less eps: a particle that crossed the drum's wall
+would fail it by millimetres. Drum angle: the angle of q(t) q(t0)^-1 (the dumped orientation of the drum
+atom against its orientation when the rotation started) about +y, compared with omega t
+(unwrapped). Angle of repose: the free surface of the bed seen along the axis (x-z plane):
+in bins 2 mm wide over the middle 60 % of the bed's width, the highest particle top (centre +
+radius); a least-squares line through those points; its inclination. Frames from half a turn on
+are averaged (the bed needs that long to reach its steady rolling state).
+
+Writes OUT.csv (per frame: time, turns, particles, all_inside, worst_margin_m, drum_angle_error_rad,
+repose_deg, surface points used), OUT_profile.csv (the last frame's free-surface points and fit)
+and OUT.png (the last frame's cross-section with the fitted surface; repose angle over time)."""
+import argparse
+import csv
+import math
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+DRUM = os.path.join(ROOT, "inputs", "drum")
+
+R, L = 0.035, 0.02           # cavity radius and length (make_drum.py defaults)
+EPS = 5e-5                   # halo (in.drum: pair_style trimesh eps)
+R_SPHERE = 0.002             # sphere radius (in.drum: diameter 0.004)
+R_GRAIN = 0.002 * 1.25       # dented sphere radius 2 mm, amplitude 0.25: radius at most 2.5 mm
+R_GRAIN_IN = 0.002 * 0.75    # ... and at least 1.5 mm
+
+
+def read_frames(path, ncols):
+    """dump custom frames: list of (step, rows)."""
+    frames = []
+    with open(path) as f:
+        lines = f.read().split("\n")
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith("ITEM: TIMESTEP"):
+            step = int(lines[i + 1])
+            n = int(lines[i + 3])
+            j = i + 4
+            while not lines[j].startswith("ITEM: ATOMS"):
+                j += 1
+            rows = [[float(t) for t in lines[j + 1 + k].split()[:ncols]] for k in range(n)]
+            frames.append((step, rows))
+            i = j + 1 + n
+        else:
+            i += 1
+    return frames
+
+
+def quat_mul(a, b):
+    w1, x1, y1, z1 = a
+    w2, x2, y2, z2 = b
+    return (w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2)
+
+
+def angle_about_y(q):
+    """Rotation angle of unit quaternion q about +y in (-pi, pi] (q a rotation about y)."""
+    w, x, y, z = q
+    return 2.0 * math.atan2(y, w)
+
+
+def free_surface(parts):
+    """(x, z_top) points of the bed's free surface and the fitted slope angle (degrees)."""
+    tops = [(p[2], p[4] + (R_SPHERE if p[1] == 1 else R_GRAIN)) for p in parts]
+    xs = [t[0] for t in tops]
+    lo, hi = min(xs), max(xs)
+    width = hi - lo
+    lo, hi = lo + 0.2 * width, hi - 0.2 * width
+    bins = {}
+    for x, z in tops:
+        if lo <= x <= hi:
+            k = int((x - lo) // 0.002)
+            if k not in bins or z > bins[k][1]:
+                bins[k] = (x, z)
+    pts = sorted(bins.values())
+    n = len(pts)
+    if n < 3:
+        return pts, float("nan"), 0.0, 0.0
+    mx = sum(p[0] for p in pts) / n
+    mz = sum(p[1] for p in pts) / n
+    sxx = sum((p[0] - mx) ** 2 for p in pts)
+    sxz = sum((p[0] - mx) * (p[1] - mz) for p in pts)
+    a = sxz / sxx
+    return pts, math.degrees(math.atan(abs(a))), a, mz - a * mx
+
+
+def run(args):
+    os.makedirs(args.workdir, exist_ok=True)
+    subprocess.run([sys.executable, os.path.join(DRUM, "make_drum.py"),
+                    os.path.join(args.workdir, "drum.stl"), os.path.join(args.workdir, "positions.in")],
+                   check=True)
+    cmd = [args.exe, "-in", os.path.join(DRUM, "in.drum"), "-echo", "none", "-log", "log.drum"]
+    for k, v in (("turns", args.turns), ("period", args.period), ("settle", args.settle),
+                 ("dt", args.dt), ("every", args.every), ("out", "drum")):
+        cmd += ["-var", k, str(v)]
+    if args.np > 1:
+        cmd = ["mpirun", "-np", str(args.np)] + cmd
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1")
+    t0 = time.time()
+    p = subprocess.run(cmd, cwd=args.workdir, env=env, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, universal_newlines=True)
+    print("run: %.0f s wall, exit %d" % (time.time() - t0, p.returncode))
+    if p.returncode != 0:
+        print(p.stdout[-3000:])
+        sys.exit(1)
+
+
+def analyse(args):
+    parts = read_frames(os.path.join(args.workdir, "drum.particles"), 5)
+    drum = read_frames(os.path.join(args.workdir, "drum.drum"), 6)
+    omega = 2 * math.pi / args.period
+    settle_steps = args.settle
+    q0 = None
+    rows = []
+    for (step, p), (step_d, d) in zip(parts, drum):
+        assert step == step_d
+        q = tuple(next(r for r in d if r[1] == 3)[2:6])
+        if q0 is None:
+            q0 = q
+        t = (step - settle_steps) * args.dt
+        rel = quat_mul(q, (q0[0], -q0[1], -q0[2], -q0[3]))
+        angle = angle_about_y(rel)
+        expected = omega * t
+        error = (angle - expected + math.pi) % (2 * math.pi) - math.pi
+        worst = float("inf")
+        for r in p:
+            rad = R_SPHERE - EPS if r[1] == 1 else R_GRAIN_IN
+            margin = min(R - (math.hypot(r[2], r[4]) + rad), L / 2 - (abs(r[3]) + rad))
+            worst = min(worst, margin)
+        pts, repose, _, _ = free_surface(p)
+        rows.append(dict(step=step, time_s=t, turns=t / args.period, particles=len(p),
+                         all_inside=int(worst > -EPS), worst_margin_m=worst,
+                         drum_angle_error_rad=error, repose_deg=repose, surface_points=len(pts)))
+    with open(args.out + ".csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    last = parts[-1][1]
+    pts, repose, a, b = free_surface(last)
+    with open(args.out + "_profile.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["x_m", "z_top_m", "z_fit_m"])
+        for x, z in pts:
+            w.writerow([x, z, a * x + b])
+    steady = [r for r in rows if r["turns"] >= 0.5]
+    mean = sum(r["repose_deg"] for r in steady) / len(steady) if steady else float("nan")
+    sd = (math.sqrt(sum((r["repose_deg"] - mean) ** 2 for r in steady) / max(1, len(steady) - 1))
+          if steady else float("nan"))
+    print("frames %d, particles %d..%d, all inside: %s, worst margin %.3g m"
+          % (len(rows), min(r["particles"] for r in rows), max(r["particles"] for r in rows),
+             all(r["all_inside"] for r in rows), min(r["worst_margin_m"] for r in rows)))
+    print("drum angle vs omega t: max |error| %.3g rad over %.2f turns"
+          % (max(abs(r["drum_angle_error_rad"]) for r in rows), rows[-1]["turns"]))
+    print("dynamic angle of repose: %.1f +- %.1f deg (mean, sd over %d frames from half a turn on)"
+          % (mean, sd, len(steady)))
+    plot(args, last, pts, a, b, rows, mean)
+
+
+def plot(args, last, pts, a, b, rows, mean):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.8))
+    for kind, colour, label in ((1, "tab:blue", "spheres"), (2, "tab:orange", "dented grains")):
+        sel = [r for r in last if r[1] == kind]
+        rad = R_SPHERE if kind == 1 else 0.002
+        for r in sel:
+            ax.add_patch(Circle((r[2] * 1e3, r[4] * 1e3), rad * 1e3, color=colour, alpha=0.5, lw=0))
+        ax.plot([], [], "o", color=colour, label=label)
+    ax.add_patch(Circle((0, 0), R * 1e3, fill=False, color="k"))
+    xs = [p[0] for p in pts]
+    ax.plot([p[0] * 1e3 for p in pts], [p[1] * 1e3 for p in pts], "k.", ms=4, label="free surface")
+    if xs:
+        x0, x1 = min(xs), max(xs)
+        ax.plot([x0 * 1e3, x1 * 1e3], [(a * x0 + b) * 1e3, (a * x1 + b) * 1e3], "r-", lw=2,
+                label="fit: %.1f deg" % math.degrees(math.atan(abs(a))))
+    ax.set_xlim(-R * 1.1e3, R * 1.1e3)
+    ax.set_ylim(-R * 1.1e3, R * 1.1e3)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("z (mm)")
+    ax.set_title("last frame, seen along the drum axis (%.2f turns)" % rows[-1]["turns"])
+    ax.legend(loc="upper left", fontsize=8)
+    bx.plot([r["turns"] for r in rows], [r["repose_deg"] for r in rows], "o-", ms=3)
+    bx.axvline(0.5, color="grey", ls=":")
+    bx.axhline(mean, color="r", ls="--", label="mean from 0.5 turns: %.1f deg" % mean)
+    bx.set_xlabel("drum turns")
+    bx.set_ylabel("dynamic angle of repose (deg)")
+    bx.set_title("free-surface inclination")
+    bx.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(args.out + ".png", dpi=110)
+    print("wrote %s.csv, %s_profile.csv, %s.png" % (args.out, args.out, args.out))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--exe", default=os.path.join(ROOT, "build", "liggghts-spacetree"))
+    p.add_argument("--np", type=int, default=1)
+    p.add_argument("--turns", type=float, default=2.0)
+    p.add_argument("--period", type=float, default=1.2)
+    p.add_argument("--settle", type=int, default=10000)
+    p.add_argument("--dt", type=float, default=4e-5)
+    p.add_argument("--every", type=int, default=1000)
+    p.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "drum"))
+    p.add_argument("--workdir", default=os.path.join(ROOT, "build", "bench_drum"))
+    p.add_argument("--replot", action="store_true", help="analyse the dumps in --workdir again")
+    args = p.parse_args()
+    if not args.replot:
+        run(args)
+    analyse(args)
+
+
+if __name__ == "__main__":
+    main()
