@@ -23,7 +23,7 @@ using namespace LAMMPS_NS;
 namespace dy = spacetree::dynamics;
 
 FixMoveTrimesh::FixMoveTrimesh(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), templ_(NULL), started_(false), time_origin_(0.0)
+  Fix(lmp, narg, arg), templ_(NULL), started_(false), time_origin_(0.0), restored_elapsed_(-1.0)
 {
   time_depend = 1;
   restart_global = 1;
@@ -175,6 +175,10 @@ void FixMoveTrimesh::setup_pre_exchange()
     time_origin_ = update->get_cur_time();
     capture_start_poses();
     started_ = true;
+  } else if (restored_elapsed_ >= 0.0) {
+    // LIGGGHTS restarts the clock at read_restart: continue from the elapsed time written
+    time_origin_ = update->get_cur_time() - restored_elapsed_;
+    restored_elapsed_ = -1.0;
   }
   place(elapsed());
 }
@@ -221,7 +225,7 @@ void FixMoveTrimesh::write_restart(FILE *fp)
   if (comm->me != 0) return;
   std::vector<double> record;
   record.push_back(started_ ? 1.0 : 0.0);
-  record.push_back(time_origin_);
+  record.push_back(started_ ? elapsed() : 0.0);
   record.push_back((double) start_.size());
   for (const auto &s : start_) {
     record.push_back((double) s.first);
@@ -238,7 +242,7 @@ void FixMoveTrimesh::restart(char *buf)
 {
   const double *r = reinterpret_cast<const double *>(buf);
   started_ = r[0] != 0.0;
-  time_origin_ = r[1];
+  restored_elapsed_ = started_ ? r[1] : -1.0;
   const int n = (int) r[2];
   start_.clear();
   for (int k = 0; k < n; k++) {

@@ -10,7 +10,7 @@
    from the time elapsed since the first run after the fix was defined, never integrated (no
    drift over long runs), and their velocity and angular velocity enter the contact law as the
    surface velocity. f_ID[1] = elapsed time (s), f_ID[2] = rotation angle omega t (rad, not
-   reduced). The start poses and time origin are written to restart files. */
+   reduced). The start poses and the elapsed time are written to restart files. */
 
 #ifdef FIX_CLASS
 
@@ -59,6 +59,7 @@ class FixMoveTrimesh : public Fix {
   class FixTrimeshTemplate *templ_;
   bool started_;
   double time_origin_;
+  double restored_elapsed_;                // from a restart file, until the next setup (< 0: none)
   std::map<long long, StartPose> start_;   // by atom ID, on every rank
 };
 
