@@ -165,6 +165,16 @@ void FixTrimeshTemplate::init()
   state_ = ifix >= 0 ? dynamic_cast<FixTrimeshState*>(modify->fix[ifix]) : NULL;
   if (!state_) error->all(FLERR,"Fix trimesh/template: its fix trimesh/state was deleted");
   check_insertion_templates();
+  // walls meet grains by their surfaces through pair_style trimesh; without it they would push
+  // the grains' bounding spheres
+  if (!force->pair_match("trimesh",1))
+    for (int i = 0; i < modify->nfix; i++)
+      if (strcmp(modify->fix[i]->style,"wall/gran") == 0) {
+        std::string msg = std::string("Fix trimesh/template ") + id + ": fix wall/gran " +
+                          modify->fix[i]->id + " would treat the grains as their bounding spheres: "
+                          "use pair_style trimesh (alone or in pair_style hybrid)";
+        error->all(FLERR,msg.c_str());
+      }
   apply_to_atoms(false);
 }
 

@@ -1,5 +1,7 @@
 #include "contact/ContactMerging.h"
 
+#include "contact/MeshContact.h"
+
 #include <algorithm>
 
 namespace spacetree::contact {

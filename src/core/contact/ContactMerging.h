@@ -8,10 +8,12 @@
 #include <cstddef>
 #include <vector>
 
-#include "contact/MeshContact.h"
 #include "geometry/RigidShape.h"
 
 namespace spacetree::contact {
+
+struct ContactPoint;        // contact/MeshContact.h
+struct MeshContactOptions;  // contact/MeshContact.h
 
 // Whether moving the closest point p of triangle t of `shape` onto a neighbouring triangle can
 // shorten the distance along direction u (unit, from p towards the other body): if p lies

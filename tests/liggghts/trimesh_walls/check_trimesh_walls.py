@@ -11,7 +11,7 @@
             friction: it creeps towards the bottom), its surface 0 < gap < 2 eps from the cylinder
   ranks     primitive and mesh floors on 2 ranks give the 1-rank trajectory
   bad       fix move/trimesh on a grain type, a touching sphere pair under pair_style trimesh
-            alone: clear errors
+            alone, a wall with grains but without pair_style trimesh: clear errors
 
   check_trimesh_walls.py CASE [--exe ...] [--workdir DIR]   (CASE list: the cases)
 """
@@ -126,6 +126,9 @@ def case_bad(R):
     rc, text = R.run("in.bad", "bad_spheres", 1, dict(what="spheres", here=R.deckdir), expect_ok=False)
     check(rc != 0 and "need pair_style gran" in text and "touch" in text,
           "bad: touching spheres under pair_style trimesh alone are refused")
+    rc, text = R.run("in.bad", "bad_nopair", 1, dict(what="nopair", here=R.deckdir), expect_ok=False)
+    check(rc != 0 and "would treat the grains as their bounding spheres" in text,
+          "bad: a wall with grains but without pair_style trimesh is refused")
 
 
 def dispatch(R, parts):
