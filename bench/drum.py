@@ -31,33 +31,14 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 DRUM = os.path.join(ROOT, "inputs", "drum")
+sys.path.insert(0, os.path.join(ROOT, "tests", "liggghts"))
+from common.outputs import parse_dump_rows  # noqa: E402  (dump custom reader)
 
 R, L = 0.035, 0.02           # cavity radius and length (make_drum.py defaults)
 EPS = 5e-5                   # halo (in.drum: pair_style trimesh eps)
 R_SPHERE = 0.002             # sphere radius (in.drum: diameter 0.004)
 R_GRAIN = 0.002 * 1.25       # dented sphere radius 2 mm, amplitude 0.25: radius at most 2.5 mm
 R_GRAIN_IN = 0.002 * 0.75    # ... and at least 1.5 mm
-
-
-def read_frames(path, ncols):
-    """dump custom frames: list of (step, rows)."""
-    frames = []
-    with open(path) as f:
-        lines = f.read().split("\n")
-    i = 0
-    while i < len(lines):
-        if lines[i].startswith("ITEM: TIMESTEP"):
-            step = int(lines[i + 1])
-            n = int(lines[i + 3])
-            j = i + 4
-            while not lines[j].startswith("ITEM: ATOMS"):
-                j += 1
-            rows = [[float(t) for t in lines[j + 1 + k].split()[:ncols]] for k in range(n)]
-            frames.append((step, rows))
-            i = j + 1 + n
-        else:
-            i += 1
-    return frames
 
 
 def quat_mul(a, b):
@@ -121,8 +102,10 @@ def run(args):
 
 
 def analyse(args):
-    parts = read_frames(os.path.join(args.workdir, "drum.particles"), 5)
-    drum = read_frames(os.path.join(args.workdir, "drum.drum"), 6)
+    parts = [(step, list(rows.values())) for step, rows in
+             parse_dump_rows(os.path.join(args.workdir, "drum.particles"))]
+    drum = [(step, list(rows.values())) for step, rows in
+            parse_dump_rows(os.path.join(args.workdir, "drum.drum"))]
     omega = 2 * math.pi / args.period
     settle_steps = args.settle
     q0 = None

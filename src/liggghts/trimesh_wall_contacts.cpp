@@ -159,26 +159,33 @@ ct::Pose grain_pose(double *x, double *q)
 
 }
 
+template <class F>
+void TrimeshWallContacts::for_each_grain(const Wall &w, F &&f)
+{
+  double **x = atom->x, **quat = templ_->state()->quat;
+  int *mask = atom->mask, *type = atom->type;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & w.fix->groupbit)) continue;
+    const TrimeshTypeTemplate *tt = templ_->type_template(type[i]);
+    if (!tt || tt->fixed) continue;
+    f(i,*tt,grain_pose(x[i],quat[i]));
+  }
+}
+
 void TrimeshWallContacts::find_primitive(Wall &w, std::vector<TrimeshWallContact> &out,
                                          ct::MeshContactStatistics &stats)
 {
-  double **x = atom->x, **quat = templ_->state()->quat;
   double *radius = atom->radius;
-  int *mask = atom->mask, *type = atom->type;
-  const int groupbit = w.fix->groupbit;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const TrimeshTypeTemplate *tt = templ_->type_template(type[i]);
-    if (!tt || tt->fixed) continue;
-    const Eigen::Vector3d c(x[i][0],x[i][1],x[i][2]);
+  for_each_grain(w,[&](int i, const TrimeshTypeTemplate &grain, const ct::Pose &pose) {
+    const TrimeshTypeTemplate *tt = &grain;
+    const Eigen::Vector3d &c = pose.position;
     // the bounding sphere (radius = R + eps) within eps of the wall
-    const ct::Pose pose = grain_pose(x[i],quat[i]);
     geo::WallPatchPlacement place;
     scratch_.clear();
     if (w.cylinder) {
       place = geo::WallPatchPlacement::onCylinder(w.point,w.direction,c);
       const double rho = (c - place.position).norm();
-      if (!(std::abs(rho - w.radius) < radius[i] + eps_)) continue;
+      if (!(std::abs(rho - w.radius) < radius[i] + eps_)) return;
       if (rho < w.radius) {   // inside: exact, by the grain's vertices
         cylinder_->find(tt->shape,pose,w.point,w.direction,w.radius,scratch_,&stats);
       } else {                // outside: the patch of the cylinder's outer side
@@ -187,7 +194,7 @@ void TrimeshWallContacts::find_primitive(Wall &w, std::vector<TrimeshWallContact
         finder_->find(tt->shape,pose,w.patch,wall_pose,scratch_,&stats);
       }
     } else {
-      if (!(std::abs((c - w.point).dot(w.direction)) < radius[i] + eps_)) continue;
+      if (!(std::abs((c - w.point).dot(w.direction)) < radius[i] + eps_)) return;
       place = geo::WallPatchPlacement::onPlane(w.point,w.direction,c);
       // the patch's body frame sits at its mesh's box centre
       const ct::Pose wall_pose{place.position + place.orientation * w.patch.centreOfMassInMesh,
@@ -208,7 +215,7 @@ void TrimeshWallContacts::find_primitive(Wall &w, std::vector<TrimeshWallContact
       wc.wall_type = w.fix->atom_type_wall();
       out.push_back(wc);
     }
-  }
+  });
 }
 
 void TrimeshWallContacts::refresh_mesh_shape(MeshWall &m)
@@ -255,15 +262,9 @@ void TrimeshWallContacts::find_mesh(Wall &w, MeshWall &m, std::vector<TrimeshWal
   MultiVectorContainer<double,3,3> *vnodes =
       mesh->prop().getElementProperty<MultiVectorContainer<double,3,3> >("v");
   double ***vmesh = vnodes ? vnodes->begin() : NULL;
-  double **x = atom->x, **quat = templ_->state()->quat;
-  int *mask = atom->mask, *type = atom->type;
-  const int groupbit = w.fix->groupbit;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const TrimeshTypeTemplate *tt = templ_->type_template(type[i]);
-    if (!tt || tt->fixed) continue;
+  for_each_grain(w,[&](int i, const TrimeshTypeTemplate &grain, const ct::Pose &pose) {
     scratch_.clear();
-    finder_->find(tt->shape,grain_pose(x[i],quat[i]),m.shape,m.pose,scratch_,&stats);
+    finder_->find(grain.shape,pose,m.shape,m.pose,scratch_,&stats);
     for (const ct::ContactPoint &cp : scratch_) {
       TrimeshWallContact wc;
       wc.atom = i;
@@ -293,7 +294,7 @@ void TrimeshWallContacts::find_mesh(Wall &w, MeshWall &m, std::vector<TrimeshWal
       }
       out.push_back(wc);
     }
-  }
+  });
 }
 
 void TrimeshWallContacts::report_to_mesh(const TrimeshWallContact &c, const Eigen::Vector3d &force_on_grain)

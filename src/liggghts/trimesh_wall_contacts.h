@@ -71,6 +71,8 @@ class TrimeshWallContacts : protected Pointers {
   void find_mesh(Wall &w, MeshWall &m, std::vector<TrimeshWallContact> &out,
                  spacetree::contact::MeshContactStatistics &stats);
   void refresh_mesh_shape(MeshWall &m);
+  // f(i, template, pose) for every owned grain (template type, not an obstacle) of w's group
+  template <class F> void for_each_grain(const Wall &w, F &&f);
 
   FixTrimeshTemplate *templ_;
   std::vector<int> excluded_;   // per type: 1 for template types (the hook's flags)

@@ -20,34 +20,16 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "trimesh"))
 import common as C  # noqa: E402
-from common.outputs import parse_thermo  # noqa: E402
-from common.runner import Fail  # noqa: E402
+from common import parse_thermo  # noqa: E402
 from trimesh_check import box_triangles, write_stl  # noqa: E402
 
 CASES = ["pose", "restart", "turntable", "bad"]
-FAILED = []
+check = C.Checks()
 P, VX, DT = 0.01, -0.05, 1e-5                      # in.pose: period, axis velocity, time step
 ORIGIN = (0.004, -0.002, 0.001)
 AXIS = (0.3, 1.0, 0.2)
 
 
-def check(cond, what):
-    print(("PASS " if cond else "FAIL ") + what, flush=True)
-    if not cond:
-        FAILED.append(what)
-
-
-def dump_frames(path):
-    frames, lines, i = [], open(path).read().split("\n"), 0
-    while i < len(lines):
-        if lines[i].startswith("ITEM: TIMESTEP"):
-            step, n = int(lines[i + 1]), int(lines[i + 3])
-            rows = {int(l.split()[0]): [float(t) for t in l.split()] for l in lines[i + 9:i + 9 + n]}
-            frames.append((step, rows))
-            i += 9 + n
-        else:
-            i += 1
-    return frames
 
 
 def qmul(a, b):
@@ -102,7 +84,7 @@ def case_pose(R):
     for np_ in (1, 2):
         dump = "pose_np%d.dump" % np_
         _, text = R.run("in.pose", "pose_np%d" % np_, np_, dict(here=R.deckdir, vx=VX, dumpfile=dump))
-        check_pose(dump_frames(os.path.join(R.work, dump)), "pose %d rank(s)" % np_)
+        check_pose(C.parse_dump_rows(os.path.join(R.work, dump)), "pose %d rank(s)" % np_)
         cols, rows = parse_thermo(text)
         t, a = rows[-1][cols.index("t")], rows[-1][cols.index("a")]
         check(abs(t - 10 * P) < 1e-15 and abs(a - 20 * math.pi) < 1e-12,
@@ -114,8 +96,8 @@ def case_restart(R):
     R.run("in.pose", "straight", 1, dict(here=R.deckdir, vx=VX, dumpfile="straight.dump"))
     R.run("in.pose", "first", 1, dict(here=R.deckdir, vx=VX, n=5000, restart=1, dumpfile="first.dump"))
     R.run("in.pose", "second", 1, dict(here=R.deckdir, vx=VX, n=5000, start="restart", dumpfile="second.dump"))
-    a = dump_frames(os.path.join(R.work, "straight.dump"))[-1]
-    b = dump_frames(os.path.join(R.work, "second.dump"))[-1]
+    a = C.parse_dump_rows(os.path.join(R.work, "straight.dump"))[-1]
+    b = C.parse_dump_rows(os.path.join(R.work, "second.dump"))[-1]
     check(a[0] == b[0] == 10000, "restart: both end at step 10000")
     d = max(abs(x - y) for x, y in zip(a[1][2], b[1][2]))
     check(d < 1e-15, "restart: the restarted obstacle's pose and velocities equal the straight run's "
@@ -150,14 +132,8 @@ def case_bad(R):
         check(rc != 0 and message in text, "bad %s: refused with '%s'" % (what, message))
 
 
-def dispatch(R, parts):
-    if parts[0] not in CASES:
-        return False
-    globals()["case_" + parts[0]](R)
-    if FAILED:
-        raise Fail("%d check(s) failed: %s" % (len(FAILED), "; ".join(FAILED)))
-    return True
 
 
 if __name__ == "__main__":
+    dispatch = C.case_dispatch({c: globals()["case_" + c] for c in CASES}, check)
     sys.exit(C.driver_main(__doc__, dispatch, lambda: CASES, "move_trimesh_"))

@@ -24,19 +24,13 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "trimesh"))
 import common as C  # noqa: E402
-from common.outputs import parse_thermo  # noqa: E402
-from common.runner import Fail  # noqa: E402
+from common import parse_thermo  # noqa: E402
 from trimesh_check import box_triangles, restitution_analytic, write_stl  # noqa: E402
 
 EPS = 1e-4
 CASES = ["restitution", "hybrid", "mixed"]
-FAILED = []
+check = C.Checks()
 
-
-def check(cond, what):
-    print(("PASS " if cond else "FAIL ") + what, flush=True)
-    if not cond:
-        FAILED.append(what)
 
 
 def table(text):
@@ -97,14 +91,8 @@ def case_mixed(R):
           "mixed: 2 ranks = 1 rank over the first 3000 steps (kinetic energy within %.3g relative)" % d)
 
 
-def dispatch(R, parts):
-    if parts[0] not in CASES:
-        return False
-    globals()["case_" + parts[0]](R)
-    if FAILED:
-        raise Fail("%d check(s) failed: %s" % (len(FAILED), "; ".join(FAILED)))
-    return True
 
 
 if __name__ == "__main__":
+    dispatch = C.case_dispatch({c: globals()["case_" + c] for c in CASES}, check)
     sys.exit(C.driver_main(__doc__, dispatch, lambda: CASES, "trimesh_spheres_"))

@@ -23,19 +23,13 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "trimesh"))
 import common as C  # noqa: E402
-from common.outputs import parse_thermo  # noqa: E402
-from common.runner import Fail  # noqa: E402
+from common import parse_thermo  # noqa: E402
 from trimesh_check import box_triangles, read_vtk, write_stl  # noqa: E402
 
 EPS = 1e-4
 CASES = ["rest", "belt", "cylinder", "ranks", "bad"]
-OK = []
+check = C.Checks()
 
-
-def check(cond, what):
-    print(("PASS " if cond else "FAIL ") + what, flush=True)
-    if not cond:
-        OK.append(what)
 
 
 def floors(work):
@@ -131,15 +125,8 @@ def case_bad(R):
           "bad: a wall with grains but without pair_style trimesh is refused")
 
 
-def dispatch(R, parts):
-    if parts[0] not in CASES:
-        return False
-    floors(R.work)
-    globals()["case_" + parts[0]](R)
-    if OK:
-        raise Fail("%d check(s) failed: %s" % (len(OK), "; ".join(OK)))
-    return True
 
 
 if __name__ == "__main__":
+    dispatch = C.case_dispatch({c: globals()["case_" + c] for c in CASES}, check, before=lambda R: floors(R.work))
     sys.exit(C.driver_main(__doc__, dispatch, lambda: CASES, "trimesh_walls_"))
