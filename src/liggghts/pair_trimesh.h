@@ -12,7 +12,12 @@
    surfaces are closer than 2E, force per eq. (1) (core ContactModel): spring on the halo
    overlap plus damping while approaching; Coulomb friction only with `friction MU`, torques
    and angular velocities only with `rotation yes` (default). Obstacles (fixed template
-   types) have infinite mass. Statistics: compute trimesh/contacts. `threads N`: the triangle
+   types) have infinite mass and move with their atom's velocity and angular velocity (fix
+   move/trimesh). Types without template are spheres (core radius r - E plus the halo): against
+   grains and obstacles here, exact sphere-triangle contacts (core SphereMeshContact); sphere
+   pairs belong to pair gran (pair_style hybrid). Grains against fix wall/gran walls by their
+   surfaces: trimesh_wall_contacts.h. Every contact goes through the one law of its type pair
+   (add_contact_force). Statistics: compute trimesh/contacts. `threads N`: the triangle
    checks of a step as TBB tasks on N threads (0 = TBB default, 1 = serial; same trajectory bit
    for bit, trimesh_parallel_contacts.h). Newton steps of the penalty kernel: `iterations K`
    (penalty: default 8; hybrid stage 1: default 5), `continuation C` (hybrid only: C more steps
