@@ -33,50 +33,11 @@ ROOT = os.path.dirname(HERE)
 DRUM = os.path.join(ROOT, "inputs", "drum")
 sys.path.insert(0, os.path.join(ROOT, "tests", "liggghts"))
 from common.outputs import parse_dump_rows  # noqa: E402  (dump custom reader)
+sys.path.insert(0, DRUM)
+from drum_analysis import Cavity, angle_error_about_y, free_surface  # noqa: E402
 
-R, L = 0.035, 0.02           # cavity radius and length (make_drum.py defaults)
-EPS = 5e-5                   # halo (in.drum: pair_style trimesh eps)
-R_SPHERE = 0.002             # sphere radius (in.drum: diameter 0.004)
-R_GRAIN = 0.002 * 1.25       # dented sphere radius 2 mm, amplitude 0.25: radius at most 2.5 mm
-R_GRAIN_IN = 0.002 * 0.75    # ... and at least 1.5 mm
-
-
-def quat_mul(a, b):
-    w1, x1, y1, z1 = a
-    w2, x2, y2, z2 = b
-    return (w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2)
-
-
-def angle_about_y(q):
-    """Rotation angle of unit quaternion q about +y in (-pi, pi] (q a rotation about y)."""
-    w, x, y, z = q
-    return 2.0 * math.atan2(y, w)
-
-
-def free_surface(parts):
-    """(x, z_top) points of the bed's free surface and the fitted slope angle (degrees)."""
-    tops = [(p[2], p[4] + (R_SPHERE if p[1] == 1 else R_GRAIN)) for p in parts]
-    xs = [t[0] for t in tops]
-    lo, hi = min(xs), max(xs)
-    width = hi - lo
-    lo, hi = lo + 0.2 * width, hi - 0.2 * width
-    bins = {}
-    for x, z in tops:
-        if lo <= x <= hi:
-            k = int((x - lo) // 0.002)
-            if k not in bins or z > bins[k][1]:
-                bins[k] = (x, z)
-    pts = sorted(bins.values())
-    n = len(pts)
-    if n < 3:
-        return pts, float("nan"), 0.0, 0.0
-    mx = sum(p[0] for p in pts) / n
-    mz = sum(p[1] for p in pts) / n
-    sxx = sum((p[0] - mx) ** 2 for p in pts)
-    sxz = sum((p[0] - mx) * (p[1] - mz) for p in pts)
-    a = sxz / sxx
-    return pts, math.degrees(math.atan(abs(a))), a, mz - a * mx
+# in.drum's defaults: cavity radius and length, halo, sphere and grain radii
+CAVITY = Cavity(R=0.035, L=0.02, eps=5e-5, sphere_radius=0.002, grain_radius=0.002)
 
 
 def run(args):
@@ -116,25 +77,18 @@ def analyse(args):
         if q0 is None:
             q0 = q
         t = (step - settle_steps) * args.dt
-        rel = quat_mul(q, (q0[0], -q0[1], -q0[2], -q0[3]))
-        angle = angle_about_y(rel)
-        expected = omega * t
-        error = (angle - expected + math.pi) % (2 * math.pi) - math.pi
-        worst = float("inf")
-        for r in p:
-            rad = R_SPHERE - EPS if r[1] == 1 else R_GRAIN_IN
-            margin = min(R - (math.hypot(r[2], r[4]) + rad), L / 2 - (abs(r[3]) + rad))
-            worst = min(worst, margin)
-        pts, repose, _, _ = free_surface(p)
+        error = angle_error_about_y(q, q0, omega * t)
+        worst = CAVITY.worst_margin(p)
+        pts, repose, _, _ = free_surface(p, CAVITY)
         rows.append(dict(step=step, time_s=t, turns=t / args.period, particles=len(p),
-                         all_inside=int(worst > -EPS), worst_margin_m=worst,
+                         all_inside=int(worst > -CAVITY.eps), worst_margin_m=worst,
                          drum_angle_error_rad=error, repose_deg=repose, surface_points=len(pts)))
     with open(args.out + ".csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)
     last = parts[-1][1]
-    pts, repose, a, b = free_surface(last)
+    pts, repose, a, b = free_surface(last, CAVITY)
     with open(args.out + "_profile.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["x_m", "z_top_m", "z_fit_m"])
@@ -162,10 +116,11 @@ def plot(args, last, pts, a, b, rows, mean):
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.8))
     for kind, colour, label in ((1, "tab:blue", "spheres"), (2, "tab:orange", "dented grains")):
         sel = [r for r in last if r[1] == kind]
-        rad = R_SPHERE if kind == 1 else 0.002
+        rad = CAVITY.sphere_radius if kind == 1 else CAVITY.grain_radius
         for r in sel:
             ax.add_patch(Circle((r[2] * 1e3, r[4] * 1e3), rad * 1e3, color=colour, alpha=0.5, lw=0))
         ax.plot([], [], "o", color=colour, label=label)
+    R = CAVITY.R
     ax.add_patch(Circle((0, 0), R * 1e3, fill=False, color="k"))
     xs = [p[0] for p in pts]
     ax.plot([p[0] * 1e3 for p in pts], [p[1] * 1e3 for p in pts], "k.", ms=4, label="free surface")

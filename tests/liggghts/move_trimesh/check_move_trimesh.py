@@ -8,6 +8,8 @@
   restart    write_restart after 5 turns, read_restart and 5 more: the straight run's pose
   turntable  a grain on a slab turning about z: friction carries it round at omega x r (the
              obstacle's surface velocity enters the contact law)
+  drum       a small closed drum (inputs/drum/in.drum) with 20 spheres and 20 grains turning a
+             quarter turn: every particle stays inside, the drum's angle is omega t; 1 and 2 ranks
   bad        malformed or conflicting commands stop with a clear error
 
   check_move_trimesh.py CASE [--exe ...] [--workdir DIR]   (CASE list: the cases)
@@ -22,8 +24,12 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "trimesh"))
 import common as C  # noqa: E402
 from common import parse_thermo  # noqa: E402
 from trimesh_check import box_triangles, write_stl  # noqa: E402
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
+DRUM = os.path.join(ROOT, "inputs", "drum")
+sys.path.insert(0, DRUM)
+from drum_analysis import Cavity, angle_error_about_y  # noqa: E402
 
-CASES = ["pose", "restart", "turntable", "bad"]
+CASES = ["pose", "restart", "turntable", "drum", "bad"]
 check = C.Checks()
 P, VX, DT = 0.01, -0.05, 1e-5                      # in.pose: period, axis velocity, time step
 ORIGIN = (0.004, -0.002, 0.001)
@@ -117,6 +123,37 @@ def case_turntable(R):
     check(err < 0.05, "turntable: the grain is carried round at omega x r (|v - w x r| = %.2g of w r, "
           "w r = %.4g m/s)" % (err, omega * r))
     check(angle > 0.5, "turntable: it went round with the table (%.2f rad)" % angle)
+
+
+def case_drum(R):
+    """A small drum (radius 15 mm, 20 spheres and 20 grains of 1.5 mm) settled, then a quarter
+    turn at period 0.5 s (1 rank; 2 ranks: 500 steps of settling, 0.05 turn): every particle
+    stays inside, the drum turns by omega t."""
+    import subprocess
+    subprocess.run([sys.executable, os.path.join(DRUM, "make_drum.py"), os.path.join(R.work, "drum.stl"),
+                    os.path.join(R.work, "positions.in"), "--radius", "0.015", "--length", "0.012",
+                    "--wall", "0.002", "--segments", "36", "--particles", "40",
+                    "--particle-radius", "0.0015", "--spacing", "0.0034"], check=True)
+    cavity = Cavity(R=0.015, L=0.012, eps=5e-5, sphere_radius=0.0015, grain_radius=0.0015)
+    period, dt = 0.5, 4e-5
+    # 2 ranks: a shorter run (falling and the first turning steps; MPI is slow on a busy box)
+    for np_, settle, turns, frames in ((1, 3000, 0.25, 7), (2, 500, 0.05, 2)):
+        out = "drum_np%d" % np_
+        R.run(os.path.join(DRUM, "in.drum"), out, np_,
+              dict(diameter=0.003, grain=0.0015, half=0.02, halfy=0.01, period=period, turns=turns,
+                   settle=settle, dt=dt, every=500, out=out))
+        parts = C.parse_dump_rows(os.path.join(R.work, out + ".particles"))
+        drum = C.parse_dump_rows(os.path.join(R.work, out + ".drum"))
+        q0 = tuple(drum[0][1][41][2:6])
+        worst = min(cavity.worst_margin(list(rows.values())) for _, rows in parts)
+        count = {len(rows) for _, rows in parts}
+        err = max(abs(angle_error_about_y(tuple(rows[41][2:6]), q0, 2 * math.pi / period * (step - settle) * dt))
+                  for step, rows in drum)
+        check(count == {40} and len(parts) == frames, "drum %d rank(s): all 40 particles in every one of %d dumps"
+              % (np_, len(parts)))
+        check(worst > -cavity.eps, "drum %d rank(s): every particle inside the cavity (worst margin %.3g m)"
+              % (np_, worst))
+        check(err < 1e-9, "drum %d rank(s): the drum turned by omega t (within %.3g rad)" % (np_, err))
 
 
 def case_bad(R):
