@@ -91,9 +91,8 @@ FixMoveTrimesh::FixMoveTrimesh(LAMMPS *lmp, int narg, char **arg) :
 FixMoveTrimesh::~FixMoveTrimesh()
 {
   // the obstacles stop: their velocities are held at zero again by the template fix
-  for (int i = 0; i < modify->nfix; i++)
-    if (strcmp(modify->fix[i]->style,"trimesh/template") == 0)
-      for (int t : types_) static_cast<FixTrimeshTemplate*>(modify->fix[i])->set_moving(t,false);
+  if (FixTrimeshTemplate *templ = FixTrimeshTemplate::find(lmp,"Fix move/trimesh"))
+    for (int t : types_) templ->set_moving(t,false);
 }
 
 int FixMoveTrimesh::setmask()
@@ -103,10 +102,7 @@ int FixMoveTrimesh::setmask()
 
 void FixMoveTrimesh::init()
 {
-  templ_ = NULL;
-  for (int i = 0; i < modify->nfix; i++)
-    if (strcmp(modify->fix[i]->style,"trimesh/template") == 0)
-      templ_ = static_cast<FixTrimeshTemplate*>(modify->fix[i]);
+  templ_ = FixTrimeshTemplate::find(lmp,"Fix move/trimesh");
   if (!templ_) error->all(FLERR,"Fix move/trimesh requires fix trimesh/template");
   char msg[256];
   for (int t : types_) {
