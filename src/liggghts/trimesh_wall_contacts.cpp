@@ -18,6 +18,7 @@
 #include "fix_trimesh_template.h"
 #include "fix_wall_gran.h"
 #include "contact/CylinderWallContact.h"
+#include "geometry/RigidMotionFit.h"
 #include "geometry/WallPatches.h"
 #include "modify.h"
 #include "neighbor.h"
@@ -34,6 +35,8 @@ struct TrimeshWallContacts::MeshWall {
   geo::RigidShape shape;
   ct::Pose pose;              // body frame of the shape -> world (a translation)
   std::vector<int> ids;       // mesh->id() of the triangles the shape was built from, in order
+  std::vector<Eigen::Vector3d> reference, nodes;  // nodes (3 per triangle) at the build, now
+  geo::RigidMotionFit fit;    // of a moving mesh: reference -> nodes
   bool built = false;
   bool stress = false;        // the mesh tracks forces (fix mesh/surface/stress)
 };
@@ -226,9 +229,32 @@ void TrimeshWallContacts::refresh_mesh_shape(MeshWall &m)
   if (m.built && !moving && neighbor->ago != 0 && (int) m.ids.size() == n) return;
   std::vector<int> ids(n);
   for (int k = 0; k < n; k++) ids[k] = mesh->id(k);
-  if (m.built && !moving && ids == m.ids) return;
+  const bool same = m.built && ids == m.ids;
+  if (same && !moving) return;
+  // the nodes now, three per triangle
+  m.nodes.resize(3*size_t(n));
+  for (int k = 0; k < n; k++)
+    for (int j = 0; j < 3; j++) {
+      double node[3];
+      mesh->node(k,j,node);
+      m.nodes[3*size_t(k)+j] = Eigen::Vector3d(node[0],node[1],node[2]);
+    }
+  if (same) {
+    // a moving mesh: its rigid motion since the build moves the shape (fix move/mesh's motions
+    // are rigid); anything else (deformation) rebuilds it
+    Eigen::Matrix3d r;
+    Eigen::Vector3d t;
+    const double tolerance = 1e-12 * (m.shape.boundingRadius + m.shape.centreOfMassInMesh.norm());
+    if (m.fit.fit(m.reference,m.nodes,tolerance,r,t)) {
+      m.pose.orientation = Eigen::Quaterniond(r);
+      m.pose.position = r * m.shape.centreOfMassInMesh + t;
+      return;
+    }
+  }
   m.ids.swap(ids);
   m.built = true;
+  m.reference = m.nodes;
+  m.fit = geo::RigidMotionFit(m.reference);
   if (n == 0) { m.shape = geo::RigidShape(); return; }
   // shared vertices by their coordinates (a mesh's nodes are copies per triangle)
   geo::TriangleMesh surface;
@@ -236,13 +262,12 @@ void TrimeshWallContacts::refresh_mesh_shape(MeshWall &m)
   for (int k = 0; k < n; k++) {
     std::array<int,3> f;
     for (int j = 0; j < 3; j++) {
-      double node[3];
-      mesh->node(k,j,node);
+      const Eigen::Vector3d &node = m.reference[3*size_t(k)+j];
       const std::array<double,3> key = {node[0],node[1],node[2]};
       auto it = index.find(key);
       if (it == index.end()) {
         it = index.emplace(key,(int) surface.vertices.size()).first;
-        surface.vertices.emplace_back(node[0],node[1],node[2]);
+        surface.vertices.push_back(node);
       }
       f[j] = it->second;
     }

@@ -9,10 +9,12 @@
      along dim, a cylinder about its axis when dim is not the axis), as fix wall/gran does for
      spheres.
    - Mesh walls (fix mesh/surface ... + fix wall/gran mesh): the triangles this rank holds of
-     each mesh (owned and ghost) as one core surface shape, rebuilt when the set changes and, for
-     a mesh that fix move/mesh moves, every step; the wall's velocity at a contact is the mesh's
-     node velocity interpolated at the contact point. Forces on a mesh that tracks them (fix
-     mesh/surface/stress) are added to it, as for spheres.
+     each mesh (owned and ghost) as one core surface shape, rebuilt when the set changes; a mesh
+     that fix move/mesh moves is followed by the rigid motion of its nodes since the build (core
+     RigidMotionFit, O(nodes) per step), rebuilt where the nodes moved otherwise; the wall's
+     velocity at a contact is the mesh's node velocity interpolated at the contact point.
+     Forces on a mesh that tracks them (fix mesh/surface/stress) are added to it, as for
+     spheres.
    The grain is the first body of each contact (normal from the grain towards the wall); the
    wall's halo is eps like any body's, so a grain rests on a wall where it rests on an obstacle
    of the same surface. fix wall/gran itself skips the template types (hook: FixWallGran::

@@ -6,8 +6,9 @@
              R (x0 - o) within 1e-12 m at every dump, velocity = v + w x (x - o(t)), angular
              velocity = omega axis, f_ID[2] = omega t; 1 and 2 ranks (the obstacle migrates)
   restart    write_restart after 5 turns, read_restart and 5 more: the straight run's pose
-  turntable  a grain on a slab turning about z: friction carries it round at omega x r (the
-             obstacle's surface velocity enters the contact law)
+  turntable  a grain on a slab turning about z, an obstacle (fix move/trimesh) or an STL mesh
+             wall (fix move/mesh): friction carries it round at omega x r (the table's surface
+             velocity enters the contact law); both tables carry it along the same path
   drum       a small closed drum (inputs/drum/in.drum) with 20 spheres and 20 grains turning a
              quarter turn: every particle stays inside, the drum's angle is omega t; 1 and 2 ranks
   bad        malformed or conflicting commands stop with a clear error
@@ -112,17 +113,25 @@ def case_restart(R):
 
 def case_turntable(R):
     write_stl(os.path.join(R.work, "slab.stl"), box_triangles((-0.025, -0.025, -0.005), (0.025, 0.025, 0.0)))
-    _, text = R.run("in.turntable", "turntable", 1, dict(here=R.deckdir))
-    cols, rows = parse_thermo(text)
-    last = {c: rows[-1][k] for k, c in enumerate(cols)}
     omega = 2 * math.pi / 2.0
-    r = math.hypot(last["x"], last["y"])
-    expected = (-omega * last["y"], omega * last["x"])   # omega x r about +z
-    err = math.hypot(last["vx"] - expected[0], last["vy"] - expected[1]) / (omega * r)
-    angle = math.atan2(last["y"], last["x"])
-    check(err < 0.05, "turntable: the grain is carried round at omega x r (|v - w x r| = %.2g of w r, "
-          "w r = %.4g m/s)" % (err, omega * r))
-    check(angle > 0.5, "turntable: it went round with the table (%.2f rad)" % angle)
+    final = {}
+    for table in ("obstacle", "mesh"):
+        _, text = R.run("in.turntable", "turntable_" + table, 1, dict(here=R.deckdir, table=table))
+        cols, rows = parse_thermo(text)
+        last = final[table] = {c: rows[-1][k] for k, c in enumerate(cols)}
+        r = math.hypot(last["x"], last["y"])
+        expected = (-omega * last["y"], omega * last["x"])   # omega x r about +z
+        err = math.hypot(last["vx"] - expected[0], last["vy"] - expected[1]) / (omega * r)
+        angle = math.atan2(last["y"], last["x"])
+        check(err < 0.05, "turntable %s: the grain is carried round at omega x r (|v - w x r| = %.2g of "
+              "w r, w r = %.4g m/s)" % (table, err, omega * r))
+        check(angle > 0.5, "turntable %s: it went round with the table (%.2f rad)" % (table, angle))
+    # the same surface turned by fix move/mesh (followed by its nodes' rigid motion) and by fix
+    # move/trimesh (pose from t): the same grain path
+    a, b = final["obstacle"], final["mesh"]
+    dx = math.hypot(a["x"] - b["x"], a["y"] - b["y"])
+    dz = abs(a["z"] - b["z"])
+    check(dx < 1e-5 and dz < 1e-6, "turntable mesh wall = obstacle: |dxy| %.3g m, |dz| %.3g m" % (dx, dz))
 
 
 def case_drum(R):
