@@ -1,0 +1,27 @@
+# neighbor spacetree's per-size ghost rule (halo levels) across MPI ranks and periodic images.
+# Driver: halo/check_halo.py (compare_runs.py's runner and comparisons); decks: halo/in.halo_*.
+# Run: ctest --test-dir build -R liggghts.halo     (ranks oversubscribed: 8 ranks on 2 cores)
+set(_halo_driver "${CMAKE_CURRENT_LIST_DIR}/check_halo.py")
+function(halo_test name timeout nprocs)
+  string(REPLACE ":" "." ctest_name "liggghts.halo.${name}")
+  string(REPLACE ":" "_" work "halo_${name}")
+  lg_driver_test("${ctest_name}" "${_halo_driver}" "${name}" "${work}" ${timeout} ${nprocs}
+                 MPI_FLAGS PYTHON_AND_TIMEOUT)
+endfunction()
+
+foreach(case r10_bi_periodic r50_bi_walled r10_cont_periodic)
+  foreach(np 1 2 4 8)
+    halo_test("pairs:${case}:${np}" 240 ${np})
+  endforeach()
+endforeach()
+foreach(np 2 4 8)
+  halo_test("settle:${np}" 240 ${np})
+endforeach()
+halo_test("restart:2:4" 240 4)
+halo_test("restart:4:1" 240 4)
+halo_test("single:1" 120 1)
+halo_test("single:2" 120 2)
+halo_test("hopper:2" 300 2)
+foreach(bad keyword ratio newton triclinic)
+  halo_test("bad:${bad}" 60 1)
+endforeach()
