@@ -31,11 +31,10 @@ import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-LIGGGHTS_TESTS = os.path.dirname(HERE)
-sys.path.insert(0, LIGGGHTS_TESTS)
-import compare_runs as C  # noqa: E402
+sys.path.insert(0, os.path.dirname(HERE))
+import common as C  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(LIGGGHTS_TESTS))
+ROOT = C.ROOT
 DECK_PAIRS = os.path.join(HERE, "in.halo_pairs")
 DECK_SETTLE = os.path.join(HERE, "in.halo_settle")
 
