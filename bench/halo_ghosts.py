@@ -204,10 +204,19 @@ def model_ghosts(np, box, atoms, grid, rule):
                         touch = (d <= r + r[b] + SKIN) & (k != k[b])
                         if not touch.any():
                             continue
-                        cell = np.floor(xb / w)          # owner box of b, shifted to image s
-                        blo = cell * w + s * L
-                        bhi = blo + w
-                        dist = np.maximum(np.maximum(blo - X, X - bhi), 0.0).max(axis=1)
+                        # owner box of b, shifted to image s; b on a cut (within rounding):
+                        # both boxes, the larger distance (as parallel::SubdomainGrid does)
+                        cell = np.floor(xb / w)
+                        near_cut = np.abs(xb / w - np.round(xb / w)) < 1e-10
+                        dist = np.zeros(len(r))
+                        for dim in range(3):
+                            cands = [cell[dim]]
+                            if near_cut[dim]:
+                                cands = [np.round(xb[dim] / w[dim]) - 1, np.round(xb[dim] / w[dim])]
+                            for cd in cands:
+                                blo = cd * w[dim] + s[dim] * L[dim]
+                                d1 = np.maximum(np.maximum(blo - X[:, dim], X[:, dim] - blo - w[dim]), 0.0)
+                                dist = np.maximum(dist, d1)
                         c = np.where(touch, np.maximum(c, dist), c)
     copies = np.ones(len(r))
     for dim in range(3):

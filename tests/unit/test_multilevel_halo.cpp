@@ -109,6 +109,37 @@ TEST(HaloReach, OwnReachAndServedCoarsePartner) {
   EXPECT_DOUBLE_EQ(HaloReach(rule, g).ownReach(0.5, 0.5), 2.5);
 }
 
+TEST(HaloReach, IndexedPartnersGiveTheBruteForceReach) {
+  // partners of two indexing calls (two classes), some far outside the box; queries inside,
+  // next to and far from them: the indexed reach equals a loop over all partners
+  const SubdomainGrid g(Vector3d(0, 0, 0), Vector3d(1, 1, 1), {{true, true, false}},
+                        uniformSplits({{3, 2, 2}}));
+  HaloRule rule;
+  rule.skin = 0.01;
+  HaloReach h(rule, g);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-0.3, 1.3);
+  std::vector<std::pair<Vector3d, double>> all;
+  for (int cls = 0; cls < 2; ++cls) {
+    const double r = cls == 0 ? 0.2 : 0.05;
+    for (int k = 0; k < (cls == 0 ? 5 : 300); ++k) {
+      const Vector3d x(u(rng), u(rng), u(rng));
+      h.addPartner(x, r);
+      all.emplace_back(x, r);
+    }
+    h.indexPartners(r);
+  }
+  for (int q = 0; q < 3000; ++q) {
+    const Vector3d x(u(rng), u(rng), u(rng));
+    const double r = 0.01;
+    double brute = h.ownReach(r, 0.01);
+    for (std::size_t p = 0; p < all.size(); ++p)
+      if ((x - all[p].first).norm() <= r + all[p].second + rule.skin)
+        brute = std::max(brute, g.distanceToOwner(x, all[p].first));
+    ASSERT_DOUBLE_EQ(h.reach(x, r, 0.01), brute) << "query " << q;
+  }
+}
+
 TEST(HaloSurface, PosedShapeReachesOnlyNearItsTriangles) {
   // a torus (R 4, r 1) tilted about x, centred at (1, 2, 3): its hole is inside its bounding
   // sphere but far from its surface

@@ -28,19 +28,38 @@ double HaloReach::touchReach(const Partner& b, double radius) const {
   return b.surface->extent() + (radius + 2.0 * halo) * rule_.contactFactor + rule_.skin;
 }
 
-HaloReach::CellKey HaloReach::cellOf(const Eigen::Vector3d& x, double cell) const {
-  return CellKey{std::int64_t(std::floor(x[0] / cell)), std::int64_t(std::floor(x[1] / cell)),
-                 std::int64_t(std::floor(x[2] / cell))};
-}
-
 void HaloReach::indexPartners(double finerLargest) {
   if (indexed_ == partners_.size()) return;
   Index index;
-  for (std::size_t p = indexed_; p < partners_.size(); ++p)
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
+  for (std::size_t p = indexed_; p < partners_.size(); ++p) {
     index.cell = std::max(index.cell, touchReach(partners_[p], finerLargest) + rule_.slack);
+    lo = lo.cwiseMin(partners_[p].x);
+    hi = hi.cwiseMax(partners_[p].x);
+  }
   if (!(index.cell > 0.0)) index.cell = 1.0;  // radius 0 and skin 0: any cell size works
+  // at most 64^3 cells: wider cells are as correct, only less selective
+  index.cell = std::max(index.cell, (hi - lo).maxCoeff() / 63.0);
+  index.lo = lo;
+  std::int64_t ncell = 1;
+  for (int d = 0; d < 3; ++d) {
+    index.dims[std::size_t(d)] = std::int64_t(std::floor((hi[d] - lo[d]) / index.cell)) + 1;
+    ncell *= index.dims[std::size_t(d)];
+  }
+  const auto cellIndex = [&index](const Eigen::Vector3d& x) {
+    std::int64_t c[3];
+    for (int d = 0; d < 3; ++d)
+      c[d] = std::min(index.dims[std::size_t(d)] - 1,
+                      std::max<std::int64_t>(0, std::int64_t(std::floor((x[d] - index.lo[d]) / index.cell))));
+    return std::size_t((c[2] * index.dims[1] + c[1]) * index.dims[0] + c[0]);
+  };
+  index.start.assign(std::size_t(ncell) + 1, 0);
+  for (std::size_t p = indexed_; p < partners_.size(); ++p) ++index.start[cellIndex(partners_[p].x) + 1];
+  for (std::size_t c = 0; c < std::size_t(ncell); ++c) index.start[c + 1] += index.start[c];
+  index.order.resize(partners_.size() - indexed_);
+  std::vector<int> fill(index.start.begin(), index.start.end() - 1);
   for (std::size_t p = indexed_; p < partners_.size(); ++p)
-    index.cells[cellOf(partners_[p].x, index.cell)].push_back(int(p));
+    index.order[std::size_t(fill[cellIndex(partners_[p].x)]++)] = int(p);
   indexes_.push_back(std::move(index));
   indexed_ = partners_.size();
 }
@@ -59,16 +78,28 @@ double HaloReach::reach(const Eigen::Vector3d& x, double radius, double classLar
   const double own = ownReach(radius, classLargest);
   double reach = own;
   for (const Index& index : indexes_) {
-    const CellKey c = cellOf(x, index.cell);
-    for (std::int64_t i = c.i - 1; i <= c.i + 1; ++i)
-      for (std::int64_t j = c.j - 1; j <= c.j + 1; ++j)
-        for (std::int64_t k = c.k - 1; k <= c.k + 1; ++k) {
-          const auto found = index.cells.find(CellKey{i, j, k});
-          if (found == index.cells.end()) continue;
-          for (int p : found->second)
+    std::int64_t c[3];
+    bool outside = false;
+    for (int d = 0; d < 3 && !outside; ++d) {
+      const double f = std::floor((x[d] - index.lo[d]) / index.cell);
+      // beyond the cells next to the partners' box: no partner within reach
+      outside = !(f >= -1.0 && f <= double(index.dims[std::size_t(d)]));
+      c[d] = outside ? 0 : std::int64_t(f);
+    }
+    if (outside) continue;
+    const std::int64_t k0 = std::max<std::int64_t>(0, c[2] - 1), k1 = std::min(index.dims[2] - 1, c[2] + 1);
+    const std::int64_t j0 = std::max<std::int64_t>(0, c[1] - 1), j1 = std::min(index.dims[1] - 1, c[1] + 1);
+    const std::int64_t i0 = std::max<std::int64_t>(0, c[0] - 1), i1 = std::min(index.dims[0] - 1, c[0] + 1);
+    for (std::int64_t k = k0; k <= k1; ++k)
+      for (std::int64_t j = j0; j <= j1; ++j)
+        for (std::int64_t i = i0; i <= i1; ++i) {
+          const std::size_t cell = std::size_t((k * index.dims[1] + j) * index.dims[0] + i);
+          for (int q = index.start[cell]; q < index.start[cell + 1]; ++q) {
+            const int p = index.order[std::size_t(q)];
             if (canTouch(x, radius, p))
               reach = std::max(reach, grid_.distanceToOwner(x, partners_[std::size_t(p)].x) +
                                           rule_.slack);
+          }
         }
   }
   if (served) *served = reach > own;

@@ -21,8 +21,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "parallel/HaloSurface.h"
@@ -72,21 +72,17 @@ class HaloReach {
     double radius;
     const HaloSurface* surface;
   };
-  struct CellKey {
-    std::int64_t i, j, k;
-    bool operator==(const CellKey& o) const { return i == o.i && j == o.j && k == o.k; }
-  };
-  struct CellHash {
-    std::size_t operator()(const CellKey& c) const {
-      return std::size_t(c.i * 73856093) ^ std::size_t(c.j * 19349663) ^ std::size_t(c.k * 83492791);
-    }
-  };
-  // The partners of one indexing call in a uniform hash grid of cells >= their largest reach.
+  // The partners of one indexing call in a dense grid of cells at least as wide as their
+  // largest reach (so a particle finds every partner it can touch in the 3 x 3 x 3 cells around
+  // it), over their bounding box: a particle outside the box widened by a cell is rejected at
+  // once, which is most particles when the partners are a few big ones.
   struct Index {
     double cell = 0.0;
-    std::unordered_map<CellKey, std::vector<int>, CellHash> cells;
+    Eigen::Vector3d lo = Eigen::Vector3d::Zero();       // corner of cell (0, 0, 0)
+    std::array<std::int64_t, 3> dims{{0, 0, 0}};
+    std::vector<int> start;                             // CSR: cell c holds order[start[c], start[c+1])
+    std::vector<int> order;                             // partner indices
   };
-  CellKey cellOf(const Eigen::Vector3d& x, double cell) const;
   double touchReach(const Partner& b, double radius) const;
 
   HaloRule rule_;
