@@ -173,6 +173,8 @@ void MultilevelHalo::begin()
   } catch (const std::exception &e) {
     error->all(FLERR,e.what());
   }
+  reach_.setOwnBox(Eigen::Vector3d(domain->sublo[0],domain->sublo[1],domain->sublo[2]),
+                   Eigen::Vector3d(domain->subhi[0],domain->subhi[1],domain->subhi[2]));
   surfaces_.clear();
   counts_.assign(nclass,ClassCounts());
 }
@@ -214,7 +216,10 @@ void MultilevelHalo::add_partners(int first, int last, int c)
   double **x = atom->x;
   for (int i = first; i < last; i++)
     reach_.addPartner(Eigen::Vector3d(x[i][0],x[i][1],x[i][2]),radius_of(i),surface_of(i));
-  reach_.indexPartners(class_largest_[c]);
+  // the particles that will ask are those of the finer classes
+  double finer = 0.0;
+  for (size_t k = c + 1; k < class_largest_.size(); k++) finer = std::max(finer,class_largest_[k]);
+  reach_.indexPartners(finer);
 }
 
 void MultilevelHalo::count_pass(int c, int nsent, int nrecv)

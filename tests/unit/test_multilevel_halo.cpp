@@ -129,15 +129,40 @@ TEST(HaloReach, IndexedPartnersGiveTheBruteForceReach) {
     }
     h.indexPartners(r);
   }
-  for (int q = 0; q < 3000; ++q) {
-    const Vector3d x(u(rng), u(rng), u(rng));
-    const double r = 0.01;
-    double brute = h.ownReach(r, 0.01);
-    for (std::size_t p = 0; p < all.size(); ++p)
-      if ((x - all[p].first).norm() <= r + all[p].second + rule.skin)
-        brute = std::max(brute, g.distanceToOwner(x, all[p].first));
-    ASSERT_DOUBLE_EQ(h.reach(x, r, 0.01), brute) << "query " << q;
+  const auto expectBruteForce = [&](const HaloReach& reach, double lo, double hi) {
+    std::uniform_real_distribution<double> inside(lo, hi);
+    for (int q = 0; q < 3000; ++q) {
+      const Vector3d x(inside(rng), inside(rng), inside(rng));
+      const double r = 0.01;
+      double brute = reach.ownReach(r, 0.01);
+      for (std::size_t p = 0; p < all.size(); ++p)
+        if ((x - all[p].first).norm() <= r + all[p].second + rule.skin)
+          brute = std::max(brute, g.distanceToOwner(x, all[p].first));
+      ASSERT_DOUBLE_EQ(reach.reach(x, r, 0.01), brute) << "query " << q;
+    }
+  };
+  expectBruteForce(h, -0.3, 1.3);
+  EXPECT_EQ(h.indexedPartnerCount(), all.size());
+  // with an own box, partners that cannot reach it are left out, the reaches inside stay
+  HaloReach boxed(rule, g);
+  boxed.setOwnBox(Vector3d(0.4, 0.4, 0.4), Vector3d(0.6, 0.6, 0.6));
+  for (int cls = 0; cls < 2; ++cls) {
+    for (std::size_t p = (cls == 0 ? 0 : 5); p < (cls == 0 ? 5 : all.size()); ++p)
+      boxed.addPartner(all[p].first, all[p].second);
+    boxed.indexPartners(0.01);  // the queries' radius: the tightest valid bound
   }
+  EXPECT_LT(boxed.indexedPartnerCount(), all.size() / 2);
+  expectBruteForce(boxed, 0.4, 0.6);
+  // a partner 0.06 outside the own box (owned by the next box, x >= 2/3), touched by a particle
+  // inside (0.061 <= 0.01 + 0.05 + skin): indexed, and the particle must reach x = 2/3
+  HaloReach edge(rule, g);
+  edge.setOwnBox(Vector3d(0.4, 0.4, 0.4), Vector3d(0.61, 0.6, 0.6));
+  edge.addPartner(Vector3d(0.67, 0.5, 0.5), 0.05);
+  edge.indexPartners(0.01);
+  EXPECT_EQ(edge.indexedPartnerCount(), 1u);
+  bool served = false;
+  EXPECT_NEAR(edge.reach(Vector3d(0.609, 0.5, 0.5), 0.01, 0.01, &served), 2.0 / 3.0 - 0.609, 1e-12);
+  EXPECT_TRUE(served);
 }
 
 TEST(HaloSurface, PosedShapeReachesOnlyNearItsTriangles) {
@@ -264,6 +289,14 @@ Exchange multilevel(const Scene& s, double ratio) {
   rule.contactFactor = s.factor;
   rule.slack = 1e-12;
   std::vector<HaloReach> rankReach(std::size_t(s.ranks()), HaloReach(rule, s.grid()));
+  for (int i = 0; i < s.procs[0]; ++i)
+    for (int j = 0; j < s.procs[1]; ++j)
+      for (int k = 0; k < s.procs[2]; ++k) {
+        const SubdomainGrid& g = s.grid();
+        rankReach[std::size_t(s.rank({{i, j, k}}))].setOwnBox(
+            Vector3d(g.cut(0, i), g.cut(1, j), g.cut(2, k)),
+            Vector3d(g.cut(0, i + 1), g.cut(1, j + 1), g.cut(2, k + 1)));
+      }
   std::vector<std::unique_ptr<PosedShapeSurface>> ghostSurfaces;  // obstacles at their images
   std::vector<std::size_t> ghostsBefore(std::size_t(s.ranks()), 0);
   for (int k = 0; k < classes.count(); ++k) {

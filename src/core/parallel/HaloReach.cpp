@@ -31,12 +31,21 @@ double HaloReach::touchReach(const Partner& b, double radius) const {
 void HaloReach::indexPartners(double finerLargest) {
   if (indexed_ == partners_.size()) return;
   Index index;
+  // only partners that reach the own box can touch a particle of this rank
+  std::vector<int> reaching;
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
   for (std::size_t p = indexed_; p < partners_.size(); ++p) {
-    index.cell = std::max(index.cell, touchReach(partners_[p], finerLargest) + rule_.slack);
-    lo = lo.cwiseMin(partners_[p].x);
-    hi = hi.cwiseMax(partners_[p].x);
+    const double reach = touchReach(partners_[p], finerLargest) + rule_.slack;
+    const Eigen::Vector3d& x = partners_[p].x;
+    const double outside = std::max((ownLo_ - x).cwiseMax(x - ownHi_).maxCoeff(), 0.0);
+    if (outside > reach) continue;
+    reaching.push_back(int(p));
+    index.cell = std::max(index.cell, reach);
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
   }
+  indexed_ = partners_.size();
+  if (reaching.empty()) return;
   if (!(index.cell > 0.0)) index.cell = 1.0;  // radius 0 and skin 0: any cell size works
   // at most 64^3 cells: wider cells are as correct, only less selective
   index.cell = std::max(index.cell, (hi - lo).maxCoeff() / 63.0);
@@ -54,14 +63,18 @@ void HaloReach::indexPartners(double finerLargest) {
     return std::size_t((c[2] * index.dims[1] + c[1]) * index.dims[0] + c[0]);
   };
   index.start.assign(std::size_t(ncell) + 1, 0);
-  for (std::size_t p = indexed_; p < partners_.size(); ++p) ++index.start[cellIndex(partners_[p].x) + 1];
+  for (int p : reaching) ++index.start[cellIndex(partners_[std::size_t(p)].x) + 1];
   for (std::size_t c = 0; c < std::size_t(ncell); ++c) index.start[c + 1] += index.start[c];
-  index.order.resize(partners_.size() - indexed_);
+  index.order.resize(reaching.size());
   std::vector<int> fill(index.start.begin(), index.start.end() - 1);
-  for (std::size_t p = indexed_; p < partners_.size(); ++p)
-    index.order[std::size_t(fill[cellIndex(partners_[p].x)]++)] = int(p);
+  for (int p : reaching) index.order[std::size_t(fill[cellIndex(partners_[std::size_t(p)].x)]++)] = p;
   indexes_.push_back(std::move(index));
-  indexed_ = partners_.size();
+}
+
+std::size_t HaloReach::indexedPartnerCount() const {
+  std::size_t n = 0;
+  for (const Index& index : indexes_) n += index.order.size();
+  return n;
 }
 
 bool HaloReach::canTouch(const Eigen::Vector3d& x, double radius, int partner) const {

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -50,13 +51,19 @@ class HaloReach {
   // Reach for the partners of the particle's own class and the finer ones.
   double ownReach(double radius, double classLargest) const;
 
+  // The box of this rank's own subdomain (its particles lie inside): partners that cannot reach
+  // it are not indexed. Default: unbounded.
+  void setOwnBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) { ownLo_ = lo; ownHi_ = hi; }
+
   // Coarse partners: ghosts of coarser classes (their coordinates as this rank holds them).
   void clearPartners();
   // `surface` (may be null) must outlive the queries.
   void addPartner(const Eigen::Vector3d& x, double radius, const HaloSurface* surface = nullptr);
-  // Indexes the partners added since the last call, for particles of radius <= finerLargest.
+  // Indexes the partners added since the last call, for particles of radius <= finerLargest
+  // (skipping those farther from the own box than they reach).
   void indexPartners(double finerLargest);
   std::size_t partnerCount() const { return partners_.size(); }
+  std::size_t indexedPartnerCount() const;
 
   // Can a particle (x, radius) touch the partner before the next rebuild?
   bool canTouch(const Eigen::Vector3d& x, double radius, int partner) const;
@@ -87,6 +94,7 @@ class HaloReach {
 
   HaloRule rule_;
   SubdomainGrid grid_;
+  Eigen::Vector3d ownLo_ = Eigen::Vector3d::Constant(-INFINITY), ownHi_ = Eigen::Vector3d::Constant(INFINITY);
   std::vector<Partner> partners_;
   std::vector<Index> indexes_;
   std::size_t indexed_ = 0;  // partners_[0, indexed_) are in indexes_
