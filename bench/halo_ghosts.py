@@ -44,7 +44,8 @@ Timing (--timing-repeats N > 0): the 1-rank periodic R = 50 pack, 200 steps, lis
 steps, levels and single alternating N times: LIGGGHTS' Comm time and its share of the loop
 (medians), with the 1-minute load average before each run.
 
-Writes OUT.csv (measured + model), OUT_projection.csv, OUT_timing.csv, OUT.png.
+Writes OUT.csv (measured + model), OUT_projection.csv, OUT_timing.csv, OUT.png; --replot redraws
+OUT.png from the CSVs.
 """
 
 import argparse
@@ -258,7 +259,22 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench-halo"))
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "halo_ghosts"))
     ap.add_argument("--timeout", type=float, default=1800.0)
+    ap.add_argument("--replot", action="store_true", help="only redraw OUT.png from OUT.csv and OUT_projection.csv")
     a = ap.parse_args()
+    if a.replot:
+        def load(path):
+            if not os.path.exists(path):
+                return []
+            rows = list(csv.DictReader(open(path)))
+            for r in rows:
+                for k in ("R", "ranks"):
+                    r[k] = float(r[k]) if k == "R" else int(r[k])
+                for k in ("ghosts_per_owned", "model_ghosts_per_owned"):
+                    if r.get(k) not in (None, ""):
+                        r[k] = float(r[k])
+            return rows
+        plot(a, load(a.out + ".csv"), load(a.out + "_projection.csv"))
+        return
     os.makedirs(a.work, exist_ok=True)
     import numpy as np
 

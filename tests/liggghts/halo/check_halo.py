@@ -17,6 +17,8 @@ TEST is one of (`check_halo.py list`):
   restart:NP:NR     the settle deck written with write_restart at step 100 on NP ranks, continued
                     on NR ranks: equals the uninterrupted run on NP ranks (SETTLE_RTOL, FINAL_RTOL)
   single:NP         `halo single` (the stock shell): the same ghost count as bin, the same pairs
+  switch:NP         spacetree, then bin, then spacetree in one deck: per-size ghosts, the stock
+                    shell (bin's count), per-size ghosts again (compute halo)
   hopper:NP         inputs/hopper, 125 triangulated grains dropped on the floor obstacle under the
                     hopper obstacle (inside its bounding sphere, away from its surface), the box cut
                     through the axis: NP ranks vs 1 rank, atoms exactly, thermo within HOPPER_RTOL,
@@ -25,6 +27,7 @@ TEST is one of (`check_halo.py list`):
 Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.
 """
 
+import collections
 import os
 import re
 import subprocess
@@ -267,6 +270,24 @@ def test_restart(R, np, nr):
     print("  PASS")
 
 
+def test_switch(R, np):
+    gen, bnd = PAIR_CASES["r10_bi_periodic"][:2]
+    data = gen_two_types(R, "switch.data", gen)
+    _, text = R.run(os.path.join(HERE, "in.halo_switch"), "switch", np, {"data": data})
+    _, tb = R.run(DECK_PAIRS, "bin", np, {"data": data, "bnd": bnd, "walls": "0", "nstyle": "bin",
+                                         "nsteps": "0"})
+    with open(os.path.join(R.work, "switch.log")) as f:
+        runs = [C.parse_thermo(c) for c in re.split(r"(?m)^(?=\s*Step\s)", f.read())[1:]]
+    got = [(column(t, "gh[6]")[-1], column(t, "gh[2]")[-1]) for t in runs]
+    bin_ghosts = ghosts_per_owned(tb)[1]
+    print("  runs (rule, ghosts): %s; bin alone: %d ghosts" % (got, bin_ghosts))
+    if len(got) != 3 or [g[0] for g in got] != [1, 0, 1]:
+        raise C.Fail("switch: expected halo levels, the stock shell, halo levels; got %s" % got)
+    if got[1][1] != bin_ghosts or got[0][1] != got[2][1] or not got[0][1] < bin_ghosts:
+        raise C.Fail("switch: ghosts %s, bin alone %d" % (got, bin_ghosts))
+    print("  PASS")
+
+
 def test_single(R, np):
     gen, bnd = PAIR_CASES["r10_bi_periodic"][:2]
     data = gen_two_types(R, "single.data", gen)
@@ -306,9 +327,16 @@ def test_hopper(R, np):
     # create_atoms numbers the grains rank by rank and `orientation random` follows the IDs:
     # identity orientations give the same grains on any rank count
     deck = os.path.join(R.work, "in.hopper_xy")
+    # plus the pairs of the neighbour list every 100 steps (compute neigh/local)
+    # (and the atoms, to name the pairs by position: create_atoms numbers atoms rank by rank)
+    pairs = ('compute nl all neigh/local\ndump dp all local 100 ${out}.pairs c_nl[1] c_nl[2]\n'
+             'dump_modify dp format "%.0f %.0f"\n'
+             'dump dx all custom 100 ${out}.atoms id radius x y z\n'
+             'dump_modify dx format "%d %.17g %.17g %.17g %.17g" sort id\nrun ${n}')
     with open(deck, "w") as f:
         f.write(text.replace("region box block", "processors * * 1\nregion box block", 1)
-                    .replace("orientation random 99", "orientation identity"))
+                    .replace("orientation random 99", "orientation identity")
+                    .replace("\nrun ${n}", "\n" + pairs, 1))
     # 125 grains dropped onto the floor obstacle, under the hopper obstacle (inside its bounding
     # sphere, away from its surface): grain-grain and grain-floor contacts across the cut
     n = 1500
@@ -334,6 +362,22 @@ def test_hopper(R, np):
           % (np, len(th1[1]), " ".join(keep), overall))
     if overall > HOPPER_RTOL:
         raise C.Fail("hopper: thermo differs by %.3e > %g" % (overall, HOPPER_RTOL))
+    # the pair sets: every pair of the 1-rank list on some rank; an obstacle's pairs with grains
+    # away from its surface are listed on the grain's rank only (the stock shell: on both)
+    def pairs_by_position(tag):
+        steps = C.parse_local_dump(os.path.join(R.work, tag + ".pairs"))
+        atoms, _ = C.parse_atoms_dump(os.path.join(R.work, tag + ".atoms"))
+        out = {}
+        for step, counter in steps.items():
+            where = {i: "%.12e %.12e %.12e" % a[1:] for i, a in atoms[step].items()}
+            out[step] = collections.Counter(tuple(sorted((where[a], where[b]))) for a, b in counter.elements())
+        return out
+    ref = pairs_by_position("hopper_np1")
+    for tag in ("hopper_np%d" % np, "hopper_single_np%d" % np):
+        C.compare_pairsets("%s vs hopper np1" % tag, ref, pairs_by_position(tag), False)
+    steps = list(ref.keys())
+    print("  pair sets equal at steps %s (%d pairs at step %d, obstacles included)"
+          % (steps, len(ref[steps[-1]]), steps[-1]))
     (ol, gl), (os_, gs) = log_ghosts(tn), log_ghosts(ts)
     print("  ghosts on %d ranks: halo levels %d, stock shell (halo single) %d" % (np, gl, gs))
     # the stock shell (twice the obstacles' radius) sends every grain across the cut; the grains'
@@ -371,7 +415,7 @@ def test_bad(R, name):
 def list_tests():
     t = ["pairs:%s:%d" % (c, n) for c in PAIR_CASES for n in (1, 2, 4, 8)]
     t += ["settle:%d" % n for n in (2, 4, 8)] + ["restart:2:4", "restart:4:1", "single:1", "single:2",
-                                                  "hopper:2"]
+                                                  "switch:2", "hopper:2"]
     return t + ["bad:%s" % b for b in BAD]
 
 
@@ -384,6 +428,8 @@ def dispatch(R, parts):
         test_restart(R, int(parts[1]), int(parts[2]))
     elif parts[0] == "single" and len(parts) == 2:
         test_single(R, int(parts[1]))
+    elif parts[0] == "switch" and len(parts) == 2:
+        test_switch(R, int(parts[1]))
     elif parts[0] == "hopper" and len(parts) == 2:
         test_hopper(R, int(parts[1]))
     elif parts[0] == "bad" and len(parts) == 2 and parts[1] in BAD:
