@@ -45,7 +45,7 @@ steps, levels and single alternating N times: LIGGGHTS' Comm time and its share 
 (medians), with the 1-minute load average before each run.
 
 Writes OUT.csv (measured + model), OUT_projection.csv, OUT_timing.csv, OUT.png; --replot redraws
-OUT.png from the CSVs.
+OUT.png from the CSVs; --remodel recomputes the model columns and the projection of OUT.csv.
 """
 
 import argparse
@@ -203,6 +203,9 @@ def model_ghosts(np, box, atoms, grid, rule):
                         xi = xb + s * L
                         d = np.sqrt(((X - xi) ** 2).sum(axis=1))
                         touch = (d <= r + r[b] + SKIN) & (k != k[b])
+                        if not s.any():   # b itself: not a ghost for the atoms of its own box
+                            own = np.floor(xb / w)
+                            touch &= ~(np.floor(X / w) == own).all(axis=1)
                         if not touch.any():
                             continue
                         # owner box of b, shifted to image s; b on a cut (within rounding):
@@ -228,6 +231,18 @@ def model_ghosts(np, box, atoms, grid, rule):
 
 
 # ---------------------------------------------------------------------------------------------
+
+def project(np, a, R, box, atoms):
+    out = []
+    for p in a.project:
+        side = round(p ** (1.0 / 3.0))
+        for method in ("levels", "single"):
+            g = model_ghosts(np, box, atoms, (side, side, side), method) / len(atoms)
+            out.append({"R": R, "atoms": len(atoms), "ranks": p, "grid": "%dx%dx%d" % (side, side, side),
+                        "method": method, "model_ghosts_per_owned": g})
+            print("  projection %d ranks %-7s ghosts/owned %.3f" % (p, method, g))
+    return out
+
 
 def timing(a, data):
     rows = []
@@ -260,6 +275,8 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "halo_ghosts"))
     ap.add_argument("--timeout", type=float, default=1800.0)
     ap.add_argument("--replot", action="store_true", help="only redraw OUT.png from OUT.csv and OUT_projection.csv")
+    ap.add_argument("--remodel", action="store_true",
+                    help="keep the measured counts of OUT.csv, recompute the model columns and the projection")
     a = ap.parse_args()
     if a.replot:
         def load(path):
@@ -279,6 +296,24 @@ def main():
     import numpy as np
 
     rows, proj = [], []
+    if a.remodel:
+        rows = list(csv.DictReader(open(a.out + ".csv")))
+        for R in a.R:
+            box, atoms = read_pack(generate(R, a.work, sys.executable))
+            for row in rows:
+                if float(row["R"]) == R and row["method"] in ("levels", "single"):
+                    grid = tuple(int(g) for g in row["grid"].split("x"))
+                    row["model_ghosts_per_owned"] = model_ghosts(np, box, atoms, grid, row["method"]) / len(atoms)
+                    print("  R %g, %s, %s: measured %s, model %.4f" % (R, row["grid"], row["method"],
+                                                                      row["ghosts_per_owned"],
+                                                                      row["model_ghosts_per_owned"]))
+            proj += project(np, a, R, box, atoms)
+        for row in rows:
+            for k in ("ranks", "owned", "ghosts", "atoms"):
+                row[k] = int(row[k])
+            row["R"] = float(row["R"])
+            row["ghosts_per_owned"] = float(row["ghosts_per_owned"])
+        a.R = []
     for R in a.R:
         data = generate(R, a.work, sys.executable)
         box, atoms = read_pack(data)
@@ -300,13 +335,7 @@ def main():
                 print("  %d ranks (%s) %-13s ghosts/owned %.3f%s" % (
                     np_, row["grid"], method, row["ghosts_per_owned"],
                     "  (model %.3f)" % model if model != "" else ""))
-        for p in a.project:
-            side = round(p ** (1.0 / 3.0))
-            for method in ("levels", "single"):
-                g = model_ghosts(np, box, atoms, (side, side, side), method) / len(atoms)
-                proj.append({"R": R, "atoms": len(atoms), "ranks": p, "grid": "%dx%dx%d" % (side, side, side),
-                             "method": method, "model_ghosts_per_owned": g})
-                print("  projection %d ranks %-7s ghosts/owned %.3f" % (p, method, g))
+        proj += project(np, a, R, box, atoms)
 
     os.makedirs(os.path.dirname(a.out), exist_ok=True)
     with open(a.out + ".csv", "w", newline="") as f:

@@ -1,4 +1,4 @@
-/* spacetree-dem: Comm::borders() by size class (the hook of liggghts_patch/0004).
+/* spacetree-dem: Comm::borders() by size class (the hook of liggghts_patch/0006).
 
    The swaps keep LIGGGHTS' Cartesian pattern (per dimension, 2 maxneed swaps alternating
    left/right, ghosts of earlier dimensions forwarded in later ones, pbc shifts at the grid's

@@ -184,6 +184,12 @@ const pl::HaloSurface *MultilevelHalo::surface_of(int i)
   if (!templ_) return nullptr;
   const TrimeshTypeTemplate *tt = templ_->type_template(atom->type[i]);
   if (!tt || !tt->fixed) return nullptr;
+  // A turning obstacle sweeps its surface through space without moving its atom (no list
+  // rebuild follows): it reaches by its bounding sphere. Without ghost velocities its turning
+  // is unknown here, so every obstacle does. (Translation moves the atom: the skin covers it.)
+  if (!comm->ghost_velocity || !atom->omega) return nullptr;
+  const double *w = atom->omega[i];
+  if (w[0] != 0.0 || w[1] != 0.0 || w[2] != 0.0) return nullptr;
   const double *q = templ_->state()->quat[i];
   surfaces_.emplace_back(new pl::PosedShapeSurface(
       tt->shape,Eigen::Vector3d(atom->x[i][0],atom->x[i][1],atom->x[i][2]),

@@ -3,7 +3,7 @@
    LIGGGHTS sends every atom to its neighbouring subdomains and periodic images out to
    r_i + r_max + skin (Comm::decide with use_gran_opt), so a wide size distribution gives every
    small atom a ghost shell as thick as the largest particle. With `halo levels` (default) the
-   atoms are exchanged by size class, coarse first (Comm::halo_borders, patch 0004): a small
+   atoms are exchanged by size class, coarse first (Comm::halo_borders, patch 0006): a small
    atom reaches its own class's partners ((r + R_class) f + skin) plus the owner of every bigger
    ghost it can touch; fixed obstacles (fix trimesh/template ... fixed) are touched by their
    surface. The rule is the LIGGGHTS-free core parallel/HaloReach; this class feeds it the
