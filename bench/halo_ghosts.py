@@ -182,11 +182,11 @@ def model_ghosts(np, box, atoms, grid, rule):
     if rule == "single":
         c = r + rmax + SKIN
     else:
-        # classes of ratio 2 from r_max; own reach (r + R_class) + skin
+        # classes of ratio 4 (halo_ratio's default) from r_max; own reach (r + R_class) + skin
         k = np.zeros(len(r), dtype=int)
         bound = rmax
         for _ in range(15):
-            bound /= 2.0
+            bound /= 4.0
             k += (r <= bound)
         R_class = np.zeros(len(r))
         for kk in np.unique(k):

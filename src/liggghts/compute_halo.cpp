@@ -73,7 +73,7 @@ void ComputeHalo::compute_vector()
     MPI_Allreduce(&local,&largest,1,MPI_DOUBLE,MPI_MAX,world);
     const MultilevelHalo *settings = neighbor->spacetree ? neighbor->spacetree->halo.get() : NULL;
     try {
-      classes = spacetree::parallel::HaloSizeClasses(largest,settings ? settings->ratio() : 2.0,kClasses);
+      classes = spacetree::parallel::HaloSizeClasses(largest,settings ? settings->ratio() : 4.0,kClasses);
     } catch (const std::exception &e) {
       error->all(FLERR,e.what());
     }

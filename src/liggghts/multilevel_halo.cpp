@@ -33,7 +33,8 @@ MultilevelHalo::~MultilevelHalo() = default;
 void MultilevelHalo::reset_settings()
 {
   levels_ = true;
-  ratio_ = 2.0;
+  ratio_ = 4.0;
+  largest_guess_ = -1.0;
 }
 
 bool MultilevelHalo::set_keyword(const char *key, const char *value)
@@ -129,25 +130,35 @@ void MultilevelHalo::begin()
       if (const TrimeshTypeTemplate *tt = templ_->type_template(t))
         type_radius_[t] = tt->boundingRadius + templ_->halo();
 
-  // global classes: from the largest radius, then the largest radius in each
+  // Global classes: built from the largest radius, then the largest radius in each. One
+  // collective when the largest radius is the one of the last call (the usual case), two when
+  // it changed: each round reduces [largest radius, largest radius per class of the guess].
   const int nlocal = atom->nlocal;
-  double local = 0.0, largest = 0.0;
+  double local = 0.0;
   for (int i = 0; i < nlocal; i++) local = std::max(local,radius_of(i));
-  MPI_Allreduce(&local,&largest,1,MPI_DOUBLE,MPI_MAX,world);
-  try {
-    classes_ = pl::HaloSizeClasses(largest,ratio_);
-  } catch (const std::exception &e) {
-    error->all(FLERR,e.what());
+  for (int round = 0; ; round++) {
+    try {
+      classes_ = pl::HaloSizeClasses(std::max(largest_guess_,0.0),ratio_);
+    } catch (const std::exception &e) {
+      error->all(FLERR,e.what());
+    }
+    const int nclass = classes_.count();
+    std::vector<double> mine(nclass+1,-1.0), all(nclass+1,-1.0);
+    mine[0] = local;
+    for (int i = 0; i < nlocal; i++) {
+      const double r = radius_of(i);
+      double &c = mine[1 + classes_.classOf(r)];
+      c = std::max(c,r);
+    }
+    MPI_Allreduce(mine.data(),all.data(),nclass+1,MPI_DOUBLE,MPI_MAX,world);
+    const double largest = std::max(all[0],0.0);
+    if (largest == largest_guess_ || round > 0) {
+      class_largest_.assign(all.begin()+1,all.end());
+      break;
+    }
+    largest_guess_ = largest;
   }
   const int nclass = classes_.count();
-  std::vector<double> class_local(nclass,-1.0);
-  for (int i = 0; i < nlocal; i++) {
-    const double r = radius_of(i);
-    double &c = class_local[classes_.classOf(r)];
-    c = std::max(c,r);
-  }
-  class_largest_.assign(nclass,-1.0);
-  MPI_Allreduce(class_local.data(),class_largest_.data(),nclass,MPI_DOUBLE,MPI_MAX,world);
   pass_class_.clear();
   for (int c = 0; c < nclass; c++)
     if (class_largest_[c] >= 0.0) pass_class_.push_back(c);

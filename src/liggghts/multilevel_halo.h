@@ -77,7 +77,8 @@ class MultilevelHalo : protected Pointers {
   double shell_floor() const;
 
   bool levels_ = true;
-  double ratio_ = 2.0;
+  double ratio_ = 4.0;
+  double largest_guess_ = -1.0;            // global largest radius of the last borders()
 
   spacetree::parallel::HaloSizeClasses classes_;
   std::vector<double> class_largest_;      // global largest radius per class (-1: empty)

@@ -63,11 +63,11 @@ PAIR_CASES = {
                        "--lattice-region", "0.15", "0.85", "0.15", "0.85", "0.05", "0.3",
                        "--shell", "2", "--seed", "1602"],
                       "f", 1000, 300, GHOST_FRACTION),
-    # radii 0.5 - 5 mm log-uniform (four size classes), periodic: each class's shell is as thick as
-    # its largest radius, so the saving is smaller than for two sizes
+    # radii 0.5 - 5 mm log-uniform (two size classes of halo_ratio 4), periodic: each class's
+    # shell is as thick as its largest radius, so the saving is smaller than for two sizes
     "r10_cont_periodic": (["continuous", "--rmin", "0.5e-3", "--rmax", "5e-3", "--n", "4000",
                            "--fill", "0.4", "--boundary", "p", "--vel", "1.0", "--seed", "1603"],
-                          "p", 1000, 300, 0.8),
+                          "p", 1000, 300, 0.85),
 }
 SETTLE_GEN = ["bidisperse", "--R", "20", "--n", "28", "--K", "1", "--big-type", "2", "--gap", "0.05",
               "--big-at", "0.5", "0.5", "0.45", "--boundary", "f", "--vel", "1.0", "--seed", "1604"]
