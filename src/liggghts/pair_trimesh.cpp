@@ -247,12 +247,7 @@ void PairTrimesh::init_style()
   if (force->newton_pair)
     error->all(FLERR,"Pair style trimesh requires newton off (granular half list, forces on owned atoms)");
 
-  templ = NULL;
-  for (int i = 0; i < modify->nfix; i++)
-    if (strcmp(modify->fix[i]->style,"trimesh/template") == 0) {
-      if (templ) error->all(FLERR,"Pair style trimesh: more than one fix trimesh/template");
-      templ = static_cast<FixTrimeshTemplate*>(modify->fix[i]);
-    }
+  templ = FixTrimeshTemplate::find(lmp,"Pair style trimesh");
   if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
   try {
     const cm::ContactParameters &p = model->parameters;
