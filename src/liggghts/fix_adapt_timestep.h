@@ -70,7 +70,7 @@ class FixAdaptTimestep : public Fix {
 
   spacetree::TimestepPolicy policy;
   spacetree::RollbackPolicy rollback;
-  bool dtmin_set, dtmax_set, dtmax_captured, veto_on, rollback_on;
+  bool dtmin_set, dtmax_set, dtmax_captured, eps_set, veto_on, rollback_on;
   double safety, eps;
   class NeighList *list;
   FILE *history;

@@ -277,6 +277,26 @@ void PairTrimesh::contact_statistics(double out[5])
   MPI_Allreduce(&stat_max_penetration,&out[4],1,MPI_DOUBLE,MPI_MAX,world);
 }
 
+std::size_t PairTrimesh::candidate_pairs() const
+{
+  return model->pairs.size();
+}
+
+const TrimeshCandidatePair &PairTrimesh::candidate_pair(std::size_t k) const
+{
+  return model->pairs[k];
+}
+
+const std::vector<ct::ContactPoint> &PairTrimesh::contacts_of(std::size_t k) const
+{
+  return model->search->contacts(k);
+}
+
+const ct::MeshContactOptions &PairTrimesh::contact_options() const
+{
+  return model->contact;
+}
+
 void PairTrimesh::compute(int eflag, int vflag)
 {
   if (eflag || vflag) ev_setup(eflag,vflag);
