@@ -141,21 +141,13 @@ void TimestepTrimeshScan::scan_near_pairs(NeighList *list, const Settings &s, bo
                              lower - reach < 2.0*halo_;
       if (!may_be_critical && !may_touch) continue;
 
-      // the pair style's canonical order: more triangles first, ties by the smaller ID
-      const std::size_t ni = ti->shape.triangleCount(), nj = tj->shape.triangleCount();
-      const bool swap = nj > ni || (nj == ni && tag[j] < tag[i]);
-      const int a = swap ? j : i, b = swap ? i : j;
-      const TrimeshTypeTemplate *ta = swap ? tj : ti, *tb = swap ? ti : tj;
-      ct::Pose pa, pb;
-      pa.position = Eigen::Vector3d(x[a][0],x[a][1],x[a][2]);
-      pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
-      pb.position = Eigen::Vector3d(x[b][0],x[b][1],x[b][2]);
-      pb.orientation = Eigen::Quaterniond(quat[b][0],quat[b][1],quat[b][2],quat[b][3]);
+      // in the pair style's canonical body order (the same on every rank)
+      const TrimeshCandidatePair p = canonical_candidate_pair(i,j,*ti,*tj,tag,x,quat);
       const std::optional<ct::ContactPoint> c =
-          probe_->nearest(ta->shape,pa,tb->shape,pb,2.0*halo_ + reach/s.safety);
+          probe_->nearest(*p.shape_a,p.pose_a,*p.shape_b,p.pose_b,2.0*halo_ + reach/s.safety);
       if (!c) continue;   // farther than the step can close: neither critical nor about to touch
 
-      const double closing = -normal_velocity(a,b,c->point.data(),c->normal.data());
+      const double closing = -normal_velocity(p.a,p.b,c->point.data(),c->normal.data());
       const double share = j < nlocal ? 1.0 : 0.5;
       if (veto && veto->considerGap(spacetree::haloGap(c->distance,halo_,P),closing,s.dtTest))
         t.critical += share;
