@@ -21,7 +21,8 @@ nothing; the pour: inputs/pour/in.pour):
             rigid-body state, all or none)
   pour      36 concave grains (L prisms, dented spheres) poured into a box with the README line
             (creep 1.1, veto, dtcontact): penetration below half the halo, no grain lost, the
-            settled bed's mean height equal to a fixed step's within 1 %, fewer steps
+            settled bed's mean height equal to a fixed step's within 4 % (fixed steps of 4e-6 to
+            6e-6 s spread it by 3.4 %: the packing), fewer steps
   badinput  eps beyond the halo, eps 0: stop with a clear ERROR
 RANKS 2 splits the box in x (the pair on the rank boundary) and compares with the 1-rank run.
 """
@@ -282,7 +283,10 @@ def case_pour(a, procs):
     check(pen_a < 0.5 * HALO, "adaptive: largest halo penetration %.3g < eps/2 (fixed step: %.3g)" % (pen_a, pen_f))
     za = np.interp(T, ha[:, 1], ha[:, 4])
     zf = hf[-1, 4]
-    check(abs(za / zf - 1) < 0.01, "settled bed mean height %.5f m = fixed step's %.5f m within 1 %% (%.2f %%)"
+    # fixed steps of 4e-6, 5e-6 and 6e-6 s settle the column at 11.33, 10.95 and 11.18 mm: the
+    # packing of 36 grains spreads the mean height by 3.4 %; a missed contact or created energy
+    # moves it far more
+    check(abs(za / zf - 1) < 0.04, "settled bed mean height %.5f m = fixed step's %.5f m within 4 %% (%.2f %%)"
           % (za, zf, 100 * (za / zf - 1)))
     check(ha[-1, 3] < 0.05 * ha[:, 3].max(), "the bed settles (KE %.3g of its peak)" % (ha[-1, 3] / ha[:, 3].max()))
     steps_a = int(ha[np.argmax(ha[:, 1] >= T - 1e-12), 0])
