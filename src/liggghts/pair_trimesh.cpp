@@ -312,6 +312,26 @@ void PairTrimesh::contact_statistics(double out[5])
   MPI_Allreduce(&stat_max_penetration,&out[4],1,MPI_DOUBLE,MPI_MAX,world);
 }
 
+std::size_t PairTrimesh::candidate_pairs() const
+{
+  return model->pairs.size();
+}
+
+const TrimeshCandidatePair &PairTrimesh::candidate_pair(std::size_t k) const
+{
+  return model->pairs[k];
+}
+
+const std::vector<ct::ContactPoint> &PairTrimesh::contacts_of(std::size_t k) const
+{
+  return model->search->contacts(k);
+}
+
+const ct::MeshContactOptions &PairTrimesh::contact_options() const
+{
+  return model->contact;
+}
+
 void PairTrimesh::compute(int eflag, int vflag)
 {
   if (eflag || vflag) ev_setup(eflag,vflag);
@@ -373,15 +393,8 @@ void PairTrimesh::compute(int eflag, int vflag)
         continue;
       }
 
-      // Canonical order, the same on every rank (with newton off a pair across two ranks is
-      // computed on both): the body with more triangles first - the core searches in the first
-      // body's frame and transforms only the second's triangles, so a big obstacle goes first
-      // (pair time of the hopper short case -9 %, median of 3) - ties broken by the smaller ID.
-      const std::size_t ni = ti->shape.triangleCount(), nj = tj->shape.triangleCount();
-      const bool swap = nj > ni || (nj == ni && tag[j] < tag[i]);
-      const int a = swap ? j : i, b = swap ? i : j;
-      const TrimeshTypeTemplate *ta = swap ? tj : ti, *tb = swap ? ti : tj;
-      model->pairs.push_back({a,b,&ta->shape,&tb->shape,pose_of(a),pose_of(b)});
+      // canonical body order, the same on every rank (newton off: computed on both)
+      model->pairs.push_back(canonical_candidate_pair(i,j,*ti,*tj,tag,x,quat));
     }
   }
 

@@ -32,7 +32,9 @@ PairStyle(trimesh,PairTrimesh)
 #ifndef LMP_PAIR_TRIMESH_H
 #define LMP_PAIR_TRIMESH_H
 
+#include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "contact/MeshContact.h"
 #include "dynamics/RigidBody.h"
@@ -41,6 +43,7 @@ PairStyle(trimesh,PairTrimesh)
 namespace LAMMPS_NS {
 
 struct PairTrimeshModel;
+struct TrimeshCandidatePair;
 
 class PairTrimesh : public Pair {
  public:
@@ -65,6 +68,16 @@ class PairTrimesh : public Pair {
   Eigen::Vector3d add_contact_force(int a, const spacetree::dynamics::RigidBody &ba, int type_a,
                                     int b, const spacetree::dynamics::RigidBody &bb, int type_b,
                                     const spacetree::contact::ContactPoint &c);
+
+  // The last compute's body pairs that passed the bounding-sphere precheck (local atom indices
+  // in the canonical body order, shapes, poses) with their contact points (world frame), and the
+  // contact search's options (halo, distance method): what fix adapt/timestep reads for its veto,
+  // contact ceiling and rollback (timestep_trimesh_scan.h).
+  std::size_t candidate_pairs() const;
+  const TrimeshCandidatePair &candidate_pair(std::size_t k) const;
+  const std::vector<spacetree::contact::ContactPoint> &contacts_of(std::size_t k) const;
+  const spacetree::contact::MeshContactOptions &contact_options() const;
+  class FixTrimeshTemplate *trimesh_template() const { return templ; }
 
  private:
   void allocate();
