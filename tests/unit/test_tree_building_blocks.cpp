@@ -7,6 +7,7 @@
 #include <tuple>
 #include <vector>
 
+#include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
 #include "tree/VertexKeySet.h"
 #include "tree/VertexLookup.h"
@@ -98,6 +99,24 @@ TEST(VertexKeySet, InsertsAndErasesLikeAStdSet) {
     for (int k = 0; k < 50; ++k) {
       const std::uint64_t key = randomKey();
       ASSERT_EQ(set.contains(key), reference.count(key) == 1) << "round " << round;
+    }
+  }
+}
+
+// The finest level of the chosen cube must hold the smallest particle: rootSize / 3^depth is
+// rounded, and a mesh one ulp below the need would host the smallest particles a level higher,
+// 27 times as many per vertex.
+TEST(GridGeometry, FinestMeshOfTheRootCubeFitsTheSmallestParticle) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> need(1e-5, 1e-1), ratio(1.0, 1e4);
+  for (int t = 0; t < 20000; ++t) {
+    const double finest = need(rng), root = finest * ratio(rng);
+    spacetree::GridGeometry g;
+    spacetree::chooseRootCube(finest, root, spacetree::kMaxSpacetreeLevel, g);
+    ASSERT_GE(spacetree::meshSizeOfLevel(g.rootSize, g.depth), finest) << "finest need " << finest;
+    ASSERT_GE(g.rootSize, root);
+    if (g.depth > 0) {
+      ASSERT_LT(g.rootSize / 3.0, root * (1.0 + 1e-12)) << "one level fewer would do";
     }
   }
 }
