@@ -1,4 +1,4 @@
-// The tree's building blocks: vertex look-up (dense and hashed) and the radix sort.
+// The tree's building blocks: root cube, radix sort, vertex key set.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,52 +10,8 @@
 #include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
 #include "tree/VertexKeySet.h"
-#include "tree/VertexLookup.h"
 
 using namespace spacetree;
-
-namespace {
-struct TestVertex {
-  VertexIndex index;
-};
-
-std::vector<TestVertex> randomVertices(int n, int range, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> u(0, range);
-  std::set<std::tuple<int, int, int>> unique;
-  while (int(unique.size()) < n) unique.insert({u(rng), u(rng), u(rng)});
-  std::vector<TestVertex> v;
-  for (const auto& [i, j, k] : unique) v.push_back(TestVertex{VertexIndex{i, j, k}});
-  return v;
-}
-
-void expectLookupFindsExactlyTheVertices(const std::vector<TestVertex>& vertices, int range,
-                                         bool expectDense) {
-  VertexLookup lookup;
-  lookup.build(vertices);
-  EXPECT_EQ(lookup.dense(), expectDense);
-  std::set<std::tuple<int, int, int>> present;
-  for (std::size_t s = 0; s < vertices.size(); ++s) {
-    const VertexIndex& v = vertices[s].index;
-    present.insert({v.i, v.j, v.k});
-    EXPECT_EQ(lookup.find(v.i, v.j, v.k), std::int32_t(s));
-  }
-  for (int i = -2; i <= range + 2; i += 3)
-    for (int j = -2; j <= range + 2; j += 2)
-      for (int k = -2; k <= range + 2; ++k)
-        if (!present.count({i, j, k})) {
-          EXPECT_EQ(lookup.find(i, j, k), VertexLookup::kAbsent);
-        }
-}
-}  // namespace
-
-TEST(VertexLookup, DenseLevelUsesAnArrayAndFindsEveryVertex) {
-  expectLookupFindsExactlyTheVertices(randomVertices(3000, 20, 1), 20, true);
-}
-
-TEST(VertexLookup, SparseLevelUsesAHashAndFindsEveryVertex) {
-  expectLookupFindsExactlyTheVertices(randomVertices(300, 200, 2), 200, false);
-}
 
 TEST(RadixSort, SortsLikeAStableSort) {
   std::mt19937_64 rng(3);
