@@ -6,16 +6,19 @@
 #ifndef LMP_NEIGH_SPACETREE_H
 #define LMP_NEIGH_SPACETREE_H
 
+#include <memory>
 #include <vector>
 
+#include "multilevel_halo.h"
 #include "tree/NeighbourSearch.h"
 
 namespace LAMMPS_NS {
 
 class NeighSpacetree {
  public:
-  spacetree::NeighbourSearch search;   // halo eps = skin/2, maxlevel, the optional adaptive grid
+  spacetree::NeighbourSearch search;    // eps = skin/2, maxlevel, the optional adaptive grid
   bool bins_for_meshes = false;         // a mesh wall reads Neighbor's bins
+  std::unique_ptr<MultilevelHalo> halo; // per-size ghost rule (keywords halo, halo_ratio)
 
   // Scratch of the list build, kept between builds to avoid reallocation.
   std::vector<double> contact_radius;   // radius * contact_distance_factor
