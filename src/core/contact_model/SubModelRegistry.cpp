@@ -2,8 +2,10 @@
 
 #include <stdexcept>
 
+#include "contact_model/CohesionSjkr.h"
 #include "contact_model/DampingApproach.h"
 #include "contact_model/NormalHaloSpring.h"
+#include "contact_model/TangentialHistory.h"
 #include "contact_model/TangentialViscous.h"
 
 namespace spacetree::contact_model {
@@ -21,6 +23,9 @@ const std::vector<SubModelEntry>& subModelRegistry() {
       {Slot::Damping, "approach", &make<DampingApproach>,
        "2 D sqrt(m_eff) |v_n| while approaching, paper eq. (1)"},
       {Slot::Tangential, "viscous", &make<TangentialViscous>, "min(gamma |v_t|, mu F), no history"},
+      {Slot::Tangential, "history", &make<TangentialHistory>,
+       "spring k_t xi + dashpot, capped at mu F (static friction)"},
+      {Slot::Cohesion, "sjkr", &make<CohesionSjkr>, "2 pi R* eps k_c while the halos overlap"},
   };
   return registry;
 }

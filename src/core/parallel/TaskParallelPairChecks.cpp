@@ -91,8 +91,10 @@ void TaskParallelPairChecks::finishSweep(std::vector<TriangleContact>& contacts)
   contacts.reserve(total);
   for (std::size_t t = 0; t < usedTasks_; ++t)
     contacts.insert(contacts.end(), tasks_[t]->contacts.begin(), tasks_[t]->contacts.end());
-  // Canonical order: a pair's contacts may come from several tasks, in any order.
-  std::sort(contacts.begin(), contacts.end(), canonicalContactLess);
+  // Canonical order: a pair's contacts may come from several tasks, in any order. Stable: the
+  // buffers are concatenated in spawn order (the producer's, deterministic), so ties keep the
+  // order of the one task that found them.
+  std::stable_sort(contacts.begin(), contacts.end(), canonicalContactLess);
   stats_.contacts = total;
   check_ = nullptr;
 }
