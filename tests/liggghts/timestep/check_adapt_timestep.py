@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regression test of `fix adapt/timestep` (tests/liggghts/in.collide).
+"""Regression test of `fix adapt/timestep` (deck in.collide beside it).
 
   check_adapt_timestep.py --exe EXE --workdir DIR
 

@@ -21,7 +21,7 @@ TEST is one of:
   restart:NP:NR   written on NP ranks, read on NR != NP: the warning about the rank count, the
                   run starts from the start-off grid, the particle thermo equals the reference
 
-Runs, parsing and the thermo comparison come from compare_runs.py.
+Runs, parsing and the thermo comparison come from ../common.
 Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.
 """
 
@@ -30,8 +30,8 @@ import re
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import compare_runs as C  # noqa: E402
+sys.path.insert(0, os.path.dirname(HERE))
+import common as C  # noqa: E402
 
 # dilute and fast: the adaptive grid, too, refines and coarsens on most steps
 PACK_GEN = ["continuous", "--rmin", "0.4e-3", "--rmax", "4e-3", "--n", "1500", "--fill", "0.1",

@@ -35,7 +35,7 @@ import sys
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(os.path.dirname(HERE))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
 sys.path.insert(0, os.path.join(ROOT, "inputs", "hopper"))
 from make_hopper import write_stl  # noqa: E402  (one ASCII STL writer for decks and tests)
 OK = True

@@ -4,7 +4,7 @@
   check_adaptive_grid.py [options] TEST
 
 TEST is one of (see `check_adaptive_grid.py list`):
-  pairs:CASE:NP    a polydisperse deck of the foundation (compare_runs.PAIR_CASES): for each grid
+  pairs:CASE:NP    a polydisperse deck of the foundation (common.PAIR_CASES): for each grid
                    type, the pair sets (compute neigh/local, dumped every 10 of 40 steps, lists
                    rebuilt every step) of spacetree + fix spacetree on NP ranks equal bin's on NP
                    ranks (multisets) and on 1 rank (sets); the adaptive grids must refine
@@ -23,8 +23,8 @@ TEST is one of (see `check_adaptive_grid.py list`):
                    particles equal the atom count and the sweep compares pairs
   bad:NAME         bad input stops with a non-zero exit code and a clear ERROR (BAD_INPUT)
 
-Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.  Reuses compare_runs.py's runner,
-dump parsers and comparisons.
+Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.  Reuses ../common's runner, dump
+parsers and comparisons.
 """
 
 import os
@@ -32,8 +32,8 @@ import re
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import compare_runs as cr  # noqa: E402
+sys.path.insert(0, os.path.dirname(HERE))
+import common as cr  # noqa: E402
 
 GRIDS = ["regular", "adaptive", "reluctant"]
 DECK = "in.grid_pairs"

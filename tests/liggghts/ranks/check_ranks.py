@@ -14,7 +14,7 @@ TEST is one of:
                   NP ranks (same run boundary); the particle count exactly, the thermo to
                   THERMO_RTOL
 
-Runs, parsing and the thermo comparison come from compare_runs.py.
+Runs, parsing and the thermo comparison come from ../common (deck in.settle there).
 Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.
 """
 
@@ -23,8 +23,8 @@ import re
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-import compare_runs as C  # noqa: E402
+sys.path.insert(0, os.path.dirname(HERE))
+import common as C  # noqa: E402
 
 RANK_CASES = {
     "settle": C.SETTLE_GEN,
@@ -59,8 +59,9 @@ def check_contacts(name, thermo):
 def test_ranks(R, case, np):
     data = R.gen(case + ".data", RANK_CASES[case])
     v = {"data": data, "nstyle": "spacetree"}
-    _, t1 = R.run("in.settle", "spacetree_np1", 1, v)
-    _, tn = R.run("in.settle", "spacetree_np%d" % np, np, v)
+    deck = os.path.join(C.COMMON, "in.settle")
+    _, t1 = R.run(deck, "spacetree_np1", 1, v)
+    _, tn = R.run(deck, "spacetree_np%d" % np, np, v)
     grid = processor_grid(tn)
     if grid is None or grid[0] * grid[1] * grid[2] != np:
         raise C.Fail("run on %d ranks reports processor grid %s" % (np, grid))
