@@ -55,6 +55,7 @@ class PairTrimesh : public Pair {
 
  private:
   void allocate();
+  void setup_history();
 
   std::unique_ptr<PairTrimeshModel> model;
   class FixTrimeshTemplate *templ;

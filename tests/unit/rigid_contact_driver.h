@@ -36,7 +36,8 @@ class RigidContactDriver {
  public:
   RigidContactDriver(contact::MeshContactOptions options, const contact_model::ContactModel& model,
                      Eigen::Vector3d gravity)
-      : finder_(std::move(options)), model_(model), gravity_(gravity) {}
+      : finder_(std::move(options)), model_(model), gravity_(gravity),
+        matcher_(model.historySize(), {0.0, 0.9}) {}
 
   void setGravity(const Eigen::Vector3d& g) { gravity_ = g; }
   // An external force and torque (about the centre) on one particle, added to the contact
@@ -67,7 +68,8 @@ class RigidContactDriver {
         if (h > 0 && !contacts_.empty()) {
           const double length =
               0.5 * std::min(particles[i].shape->minimumEdgeLength, particles[j].shape->minimumEdgeLength);
-          contact_model::ContactHistoryMatcher matcher(h, {length, 0.9});
+          matcher_.setDistance(length);
+          contact_model::ContactHistoryMatcher& matcher = matcher_;
           const std::vector<double>& previous = histories_[{i, j}];
           std::vector<double>& next = nextHistories[{i, j}];
           contact_model::ContactHistoryMatchStatistics stats;
@@ -108,6 +110,7 @@ class RigidContactDriver {
   std::map<std::size_t, dynamics::BodyLoad> external_;
   std::map<std::pair<std::size_t, std::size_t>, std::vector<double>> histories_;
   std::vector<contact::ContactPoint> contacts_;
+  contact_model::ContactHistoryMatcher matcher_;
 };
 
 }  // namespace spacetree::testing

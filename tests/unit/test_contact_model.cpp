@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "contact_model/ContactHistory.h"
 #include "contact_model/ContactModel.h"
 #include "contact_model/DampingApproach.h"
+#include "contact_model/MaterialMapping.h"
 #include "contact_model/SubModelRegistry.h"
 #include "dynamics/ContactForce.h"
 
@@ -373,4 +375,64 @@ TEST(ContactHistory, OpenedContactsEndMergedOnesAddUpNewOnesStartAtZero) {
   EXPECT_EQ(next[7 + 6], 5.0);
 }
 
+}  // namespace
+
+namespace {
+TEST(ContactModel, ZeroTimeStepRepeatsTheForceAndKeepsTheHistory) {
+  const ContactModel model(historySpec(), historyParameters(0.5, 2e3, 30.0));
+  Contact k;
+  k.normal = Vector3d::UnitZ();
+  k.penetration = 1e-3;
+  k.effectiveMass = 1.0;
+  k.relativeVelocity = Vector3d(0.3, 0.1, 0);
+  double xi[3] = {0, 0, 0};
+  for (int s = 0; s < 30; ++s) model.evaluate(k, xi, 1e-3);  // slides: xi at the cap
+  const Vector3d last = model.evaluate(k, xi, 1e-3).forceOnFirst;
+  const double after[3] = {xi[0], xi[1], xi[2]};
+  const Vector3d again = model.evaluate(k, xi, 0.0).forceOnFirst;
+  EXPECT_EQ(std::memcmp(after, xi, sizeof(xi)), 0);                  // unchanged
+  EXPECT_EQ(std::memcmp(last.data(), again.data(), sizeof(double) * 3), 0);  // same bits
+  k.relativeVelocity = Vector3d(-0.3, 0.1, 0);  // (a real step does move it)
+  model.evaluate(k, xi, 1e-3);
+  EXPECT_NE(std::memcmp(after, xi, sizeof(xi)), 0);
+}
+}  // namespace
+
+namespace {
+TEST(MaterialMapping, HertzEffectiveQuantitiesAndTheHaloStiffness) {
+  const double inf = std::numeric_limits<double>::infinity();
+  // one material, nu = 0: S = E r between grains (Yade's FrictPhys for equal spheres), 2 E r on a wall
+  EXPECT_DOUBLE_EQ(haloStiffness(effectiveModulus(1e7, 0.0, 1e7, 0.0), effectiveRadius(0.01, 0.01)), 1e7 * 0.01);
+  EXPECT_DOUBLE_EQ(haloStiffness(effectiveModulus(1e7, 0.0, 1e7, 0.0), effectiveRadius(0.01, inf)), 2 * 1e7 * 0.01);
+  // E* with nu: E / (2 (1 - nu^2)) for one material
+  EXPECT_NEAR(effectiveModulus(2e9, 0.3, 2e9, 0.3), 2e9 / (2 * (1 - 0.09)), 1e-3);
+  // a soft wall lowers the stiffness: E* of 1e7 and 1e6
+  EXPECT_NEAR(effectiveModulus(1e7, 0.0, 1e6, 0.0), 1.0 / (1e-7 + 1e-6), 1e-6);
+  // Mindlin: 2 (1 - nu) / (2 - nu) for one material
+  EXPECT_NEAR(mindlinStiffnessRatio(5e6, 0.3, 5e6, 0.3), 2 * 0.7 / 1.7, 1e-14);
+  EXPECT_NEAR(mindlinStiffnessRatio(5e6, 0.0, 5e6, 0.0), 1.0, 1e-14);
+  EXPECT_THROW(effectiveModulus(-1.0, 0.3, 1e7, 0.3), std::invalid_argument);
+  EXPECT_THROW(effectiveModulus(1e7, 0.5, 1e7, 0.3), std::invalid_argument);
+  EXPECT_THROW(effectiveModulus(std::nan(""), 0.3, 1e7, 0.3), std::invalid_argument);
+}
+
+TEST(MaterialMapping, ContactTimeMatchesADirectIntegration) {
+  for (double zeta : {0.0, 0.3, 0.9, 1.0, 1.4}) {
+    const double spring = 4e5, mass = 0.02, damping = zeta * std::sqrt(spring / 2);
+    const ContactTiming t = contactTiming(spring, damping, mass, 0.0, 0.0);
+    // m x'' = -(S/2) x - 2 D sqrt(m) x' (approach), -(S/2) x (release), from x = 0, x' = 1
+    const double dt = 1e-5 / t.normalFrequency;
+    double x = 0.0, v = 1.0, time = 0.0;
+    do {
+      const double a = (-(spring / 2) * x - (v > 0 ? 2 * damping * std::sqrt(mass) * v : 0.0)) / mass;
+      v += a * dt;
+      x += v * dt;
+      time += dt;
+    } while (x > 0.0);
+    EXPECT_NEAR(time / t.contactTime, 1.0, 1e-4) << zeta;
+    EXPECT_NEAR(t.stableStep, 2.0 / t.normalFrequency, 1e-18);
+  }
+  const ContactTiming withSpring = contactTiming(4e5, 0.0, 0.02, 3e5, 0.005);
+  EXPECT_NEAR(withSpring.stableStep, 2.0 / std::sqrt(3e5 / 0.005), 1e-15);
+}
 }  // namespace

@@ -23,7 +23,7 @@ class CohesionSjkr : public CohesionSubModel {
   explicit CohesionSjkr(const ContactParameters& p);
   double force(const Contact& c) const override { return c.penetration > 0.0 ? pullOff_ : 0.0; }
   // F_coh = 2 pi R* eps k_c [N]: the pull-off force of one contact point.
-  double pullOffForce() const { return pullOff_; }
+  double pullOffForce() const override { return pullOff_; }
 
  private:
   double pullOff_;

@@ -12,6 +12,11 @@ ContactHistoryMatcher::ContactHistoryMatcher(int historySize, ContactHistoryMatc
     throw std::invalid_argument("ContactHistoryMatcher: distance must be >= 0");
 }
 
+void ContactHistoryMatcher::setDistance(double distance) {
+  if (!(distance >= 0.0)) throw std::invalid_argument("ContactHistoryMatcher: distance must be >= 0");
+  options_.distance = distance;
+}
+
 void ContactHistoryMatcher::matchAnchors(const double* previous, std::size_t previousCount,
                                          std::vector<double>& next,
                                          ContactHistoryMatchStatistics* statistics) {

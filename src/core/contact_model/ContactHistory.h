@@ -55,6 +55,8 @@ class ContactHistoryMatcher {
  public:
   ContactHistoryMatcher(int historySize, ContactHistoryMatchOptions options);
   int historySize() const { return historySize_; }
+  // The match distance of the next match() calls (e.g. per body pair); >= 0.
+  void setDistance(double distance);
   int recordSize() const { return kContactAnchorDoubles + historySize_; }
 
   // previous: previousCount records (recordSize() doubles each); current: this step's contact

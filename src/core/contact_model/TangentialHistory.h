@@ -3,15 +3,16 @@
 // History: the tangential displacement xi (3 doubles, world frame) of the contact point. Each
 // step, before the increment, xi is rotated into the current tangent plane (its normal
 // component removed, its length kept: the contact plane of a rolling or tilting pair turns);
-// then xi += v_t dt and
-//   f_t = k_t xi + 2 D_t sqrt(m_eff) v_t              on the first body (j gets -f_t),
-// i.e. the first body is pulled along with the second's relative displacement. If the spring
-// alone exceeds the Coulomb limit, k_t |xi| > mu F (F the repulsive normal force), the contact
-// slides: xi is cut back to |xi| = mu F / k_t and f_t = k_t xi (the rule of LIGGGHTS' tangential
-// history model: a dashpot added to the cut spring, as LAMMPS' linear_history does, turns xi
-// against the sliding when the dashpot alone exceeds mu F, and the spring then pushes the body
-// on when the sliding slows). Otherwise the sum is capped at mu F. So |f_t| <= mu F always, and
-// at rest (v_t = 0) the spring holds up to mu F: static friction.
+// then xi += v_t dt, and if the spring exceeds the Coulomb limit, k_t |xi| > mu F (F the
+// repulsive normal force), the contact slides: xi is cut back to |xi| = mu F / k_t (the rule of
+// LIGGGHTS' tangential history model; LAMMPS' linear_history cuts spring plus dashpot, which
+// turns xi against the sliding when the dashpot alone exceeds mu F, and the spring then pushes
+// the body on when the sliding slows). The force
+//   f_t = k_t xi + 2 D_t sqrt(m_eff) v_t,  scaled down to mu F if longer,
+// acts on the first body (j gets -f_t): the first body is pulled along with the second's
+// relative displacement. So |f_t| <= mu F always, and at rest (v_t = 0) the spring holds up to
+// mu F: static friction. dt = 0 evaluates the stored xi without changing it (the force
+// computation of a run's setup repeats the last step's force: LIGGGHTS' shearupdate = 0).
 // A new contact starts with xi = 0; a contact that opens loses it (the caller drops its slot).
 // Coefficients: friction mu >= 0, tangentialStiffness k_t [N/m] > 0, tangentialDamping D_t
 // [sqrt(kg)/s] >= 0 (one contact point: damping ratio D_t / sqrt(k_t) of the tangential
@@ -25,8 +26,9 @@ namespace spacetree::contact_model {
 
 class TangentialHistory : public TangentialSubModel {
  public:
+  static constexpr int kHistorySize = 3;  // xi
   explicit TangentialHistory(const ContactParameters& p);
-  int historySize() const override { return 3; }
+  int historySize() const override { return kHistorySize; }
   Eigen::Vector3d forceOnFirst(const Contact& c, double normalForce, double* history,
                                double dt) const override;
   double stiffness() const override { return stiffness_; }
