@@ -222,6 +222,11 @@ void PairTrimesh::settings(int narg, char **arg)
   if (cs.spec.tangential == "viscous" && std::isnan(cs.sliding_damping))
     error->all(FLERR,"Illegal pair_style trimesh command: tangential viscous needs friction MU GAMMA "
                "(GAMMA: sliding damping, N s/m)");
+  if (cs.spec.tangential != "viscous" && have_tangential && !std::isnan(cs.sliding_damping))
+    error->all(FLERR,"Illegal pair_style trimesh command: friction MU GAMMA: GAMMA is the sliding damping "
+               "of tangential viscous (give friction MU alone)");
+  if (cs.spec.tangential != "history" && !std::isnan(cs.tangential_stiffness))
+    error->all(FLERR,"Illegal pair_style trimesh command: tangential_stiffness needs tangential history");
   if (cs.spec.damping == "none" && !std::isnan(cs.damping))
     error->all(FLERR,"Illegal pair_style trimesh command: damping D with damping_model none");
   // the history store exists from here on (thermo may name it; a restart file fills it)

@@ -85,14 +85,15 @@ cm::ContactParameters TrimeshContactCoefficients::parameters(int i, int j,
       error->all(FLERR,msg);
     }
   };
-  const bool have_materials = !std::isnan(s.stiffness) ? false : true;
+  // Young's modulus and Poisson's ratio: for the stiffness unless given, and for Mindlin's
+  // tangential stiffness (history without tangential_stiffness) when poissonsRatio exists
+  const bool stiffness_from_materials = std::isnan(s.stiffness);
+  const bool mindlin = spec.tangential == "history" && std::isnan(s.tangential_stiffness) &&
+      modify->find_fix_property("poissonsRatio","property/global","peratomtype",0,0,"pair_style trimesh",false);
   double youngs_i = 0, youngs_j = 0, poisson_i = 0, poisson_j = 0;
-  bool have_poisson = false;
-  if (have_materials || (spec.tangential == "history" && std::isnan(s.tangential_stiffness) &&
-                         modify->find_fix_property("poissonsRatio","property/global","peratomtype",0,0,
-                                                   "pair_style trimesh",false))) {
-    const char *why = "the stiffness (no pair_style keyword stiffness)";
-    if (!have_materials) why = "the tangential stiffness (no pair_style keyword tangential_stiffness)";
+  if (stiffness_from_materials || mindlin) {
+    const char *why = stiffness_from_materials ? "the stiffness (no pair_style keyword stiffness)"
+                                               : "the tangential stiffness (no pair_style keyword tangential_stiffness)";
     youngs_i = per_type("youngsModulus",i,why);
     youngs_j = per_type("youngsModulus",j,why);
     poisson_i = per_type("poissonsRatio",i,why);
@@ -101,8 +102,8 @@ cm::ContactParameters TrimeshContactCoefficients::parameters(int i, int j,
     check("youngsModulus",youngs_j,youngs_j > 0,"> 0 (Pa)");
     check("poissonsRatio",poisson_i,poisson_i >= 0 && poisson_i < 0.5,"in [0, 0.5)");
     check("poissonsRatio",poisson_j,poisson_j >= 0 && poisson_j < 0.5,"in [0, 0.5)");
-    have_poisson = true;
   }
+  const bool have_poisson = stiffness_from_materials || mindlin;
 
   cm::ContactParameters p;
   p.set("haloDepth",s.eps);

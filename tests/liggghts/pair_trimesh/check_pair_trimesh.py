@@ -308,6 +308,10 @@ BAD = {
                     r"poissonsRatio = 0.7 for type pair 1 2 must be in \[0, 0.5\)"),
     "viscous_gamma": ("pair_style trimesh eps 1e-4 stiffness 1e5 damping 1 tangential viscous friction 0.5\n",
                       r"tangential viscous needs friction MU GAMMA"),
+    "gamma_with_history": ("pair_style trimesh eps 1e-4 stiffness 1e5 damping 1 tangential history friction 0.5 2\n",
+                           r"GAMMA is the sliding damping of tangential viscous"),
+    "kt_without_history": ("pair_style trimesh eps 1e-4 stiffness 1e5 damping 1 tangential_stiffness 1e5\n",
+                           r"tangential_stiffness needs tangential history"),
     "history_newton_on": ("pair_style trimesh eps 1e-4 stiffness 1e5 damping 1 tangential history friction 0.5\n" + RUN,
                           r"requires newton off.*tangential history"),
 }
