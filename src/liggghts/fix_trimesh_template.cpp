@@ -242,6 +242,21 @@ void FixTrimeshTemplate::set_halo(double eps)
   halo_ = eps;
 }
 
+FixTrimeshTemplate *FixTrimeshTemplate::find(LAMMPS *lmp, const char *who)
+{
+  FixTrimeshTemplate *found = NULL;
+  for (int i = 0; i < lmp->modify->nfix; i++)
+    if (strcmp(lmp->modify->fix[i]->style,"trimesh/template") == 0) {
+      if (found) {
+        char msg[256];
+        snprintf(msg,sizeof(msg),"%s: more than one fix trimesh/template",who);
+        lmp->error->all(FLERR,msg);
+      }
+      found = static_cast<FixTrimeshTemplate*>(lmp->modify->fix[i]);
+    }
+  return found;
+}
+
 const TrimeshTypeTemplate *FixTrimeshTemplate::type_template(int t) const
 {
   if (t < 1 || t >= static_cast<int>(templates_.size())) return NULL;

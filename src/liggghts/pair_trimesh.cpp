@@ -298,12 +298,7 @@ void PairTrimesh::init_style()
                  "tangential history is kept on the owned atoms of each pair)"
                : "Pair style trimesh requires newton off (granular half list, forces on owned atoms)");
 
-  templ = NULL;
-  for (int i = 0; i < modify->nfix; i++)
-    if (strcmp(modify->fix[i]->style,"trimesh/template") == 0) {
-      if (templ) error->all(FLERR,"Pair style trimesh: more than one fix trimesh/template");
-      templ = static_cast<FixTrimeshTemplate*>(modify->fix[i]);
-    }
+  templ = FixTrimeshTemplate::find(lmp,"Pair style trimesh");
   if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
 
   // the contact model of every type pair, from the keywords and the materials

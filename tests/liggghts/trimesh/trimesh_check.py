@@ -483,6 +483,11 @@ BAD = {
                                 "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10\n"
                                 "fix pts all particletemplate/trimesh 15485863 atom_type 2",
                                 r"ERROR.*particletemplate/trimesh: atom type 2 is a fixed obstacle"),
+    "two_templates": ("fix shapes all trimesh/template type 1 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                      "fix shapes2 all trimesh/template type 2 dented ntri 40 radius 0.002 amplitude 0.2 seed 7\n"
+                      "pair_style trimesh eps 1e-4 stiffness 1e5 damping 10\n"
+                      "fix pts all particletemplate/trimesh 15485863 atom_type 1",
+                      r"ERROR.*particletemplate/trimesh: more than one fix trimesh/template"),
 }
 
 
