@@ -21,6 +21,11 @@ Tests (`:2` = on 2 ranks, the bodies on both sides of the rank boundary):
   history_restart[:2]  the pile written to a restart file half way and continued = the same run
                    split in one process (both set up at the half-way step), bit for bit: dumps
                    and the history's thermo columns
+  rollback[:2]     two cubes meeting corner to corner with a sideways speed, fix adapt/timestep
+                   rollback yes: the step entering the halo too deep is redone with half the step;
+                   the redone step's spring (and positions, velocities) = those of a replay of the
+                   same step sizes without rollback, bit for bit (the rejected attempt's spring
+                   restored away), later steps to 1e-12 (relative)
   shuffle          the incline (hold and slide) with the cube's triangles in another order: the
                    same trajectory and history to 1e-12
   bad              unknown sub-model or keyword, a missing material for a type pair, negative
@@ -241,6 +246,58 @@ def case_history_restart(R, np):
           "history" % cont["hn"][0])
 
 
+ROLLBACK_COLS = ("hn", "hsum", "x1", "x2", "y2", "vy1", "vy2")
+
+
+def rollback_rows(text):
+    """{step: {column: thermo string}} of every thermo row of every run in a log (last one wins)."""
+    rows, cols = {}, None
+    for line in text.splitlines():
+        w = line.split()
+        if w and w[0] == "Step":
+            cols = w
+        elif line.startswith("Loop time"):
+            cols = None
+        elif cols and len(w) == len(cols) and w[0].isdigit():
+            rows[int(w[0])] = dict(zip(cols, w))
+    return rows
+
+
+def case_rollback(R, np):
+    from trimesh_check import cube_diag_stl  # noqa: E402
+    cube_diag_stl(os.path.join(R.work, "cube_diag.stl"), EDGE)
+    vt, dt, n = 0.02, 1e-4, 12
+    with open(os.path.join(R.work, "adaptive.in"), "w") as f:
+        f.write("fix dtv all adapt/timestep creep 1.1 veto no rollback yes penetration 0.8\n"
+                "thermo_style custom step time dt v_ncont v_hn v_hsum v_x1 v_x2 v_y2 v_vy1 v_vy2 f_dtv[5]\n"
+                "thermo_modify format float %%.17g\nrun %d\n" % n)
+    procs = "2 1 1" if np == 2 else "1 1 1"
+    _, text = R.run("in.rollback", "adaptive", np, dict(vt=vt, dt=dt, steps="adaptive.in", procs=procs))
+    a = rollback_rows(text)
+    redone = [k for k in range(1, n + 1) if float(a[k]["dtv[5]"]) > float(a[k - 1]["dtv[5]"])]
+    check(len(redone) == 1 and a[redone[0]]["hn"] == "1",
+          "rollback: one step redone (%s), the one that first touches (%s contact point with history)"
+          % (redone, a[redone[0]]["hn"] if redone else "-"))
+    k0 = redone[0]
+    # the step sizes: dt up to the redone step, which fix adapt/timestep redoes with half of it
+    # (RollbackPolicy::shrink), then those printed at each row (dt is the next step's size)
+    sizes = [dt] * (k0 - 1) + [0.5 * dt] + [float(a[k]["Dt"]) for k in range(k0, n)]
+    with open(os.path.join(R.work, "replay.in"), "w") as f:
+        f.write("thermo_modify format float %.17g\n")
+        for size in sizes:
+            f.write("timestep %r\nrun 1\n" % size)
+    _, text = R.run("in.rollback", "replay", 1, dict(vt=vt, dt=dt, steps="replay.in", procs="1 1 1"))
+    b = rollback_rows(text)
+    same = [c for c in ROLLBACK_COLS if a[k0][c] == b[k0][c]]
+    check(len(same) == len(ROLLBACK_COLS), "rollback: the redone step %d = the replay with dt %r without "
+          "rollback, bit for bit in %s (spring sum %s)" % (k0, 0.5 * dt, same, a[k0]["hsum"]))
+    worst = max(abs(float(a[k][c]) - float(b[k][c])) / max(abs(float(b[k][c])), 1e-300)
+                for k in range(k0, n + 1) for c in ROLLBACK_COLS if float(b[k][c]) != 0.0)
+    check(worst < 1e-12 and all(a[k]["hn"] == b[k]["hn"] for k in range(k0, n + 1)),
+          "rollback: steps %d..%d = the replay to %.3g (relative), the same points with history"
+          % (k0, n, worst))
+
+
 def case_shuffle(R):
     write_incline_meshes(R.work)
     h = EDGE / 2
@@ -337,6 +394,7 @@ def dispatch(R, parts):
              "restitution": lambda: case_restitution(R, np), "cohesion": lambda: case_cohesion(R, np),
              "history_ranks": lambda: case_history_ranks(R),
              "history_restart": lambda: case_history_restart(R, np),
+             "rollback": lambda: case_rollback(R, np),
              "shuffle": lambda: case_shuffle(R), "bad": lambda: case_bad(R)}
     if name not in cases:
         return False
