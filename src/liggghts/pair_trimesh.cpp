@@ -17,9 +17,12 @@
 #include "atom.h"
 #include "comm.h"
 #include "contact/MeshContact.h"
+#include "contact_model/ContactHistory.h"
 #include "contact_model/ContactModel.h"
+#include "contact_model/SubModelRegistry.h"
 #include "dynamics/RigidBody.h"
 #include "error.h"
+#include "fix_trimesh_contact_history.h"
 #include "fix_trimesh_state.h"
 #include "fix_trimesh_template.h"
 #include "force.h"
@@ -30,6 +33,7 @@
 #include "neigh_request.h"
 #include "neighbor.h"
 #include "trimesh_contact_body.h"
+#include "trimesh_contact_coefficients.h"
 #include "trimesh_parallel_contacts.h"
 #include "trimesh_wall_contacts.h"
 #include "contact/SphereMeshContact.h"
@@ -42,6 +46,14 @@ namespace dy = spacetree::dynamics;
 
 namespace {
 
+// Whether a word is a number (a keyword's optional value follows).
+bool is_number(const char *word)
+{
+  char *end = NULL;
+  strtod(word,&end);
+  return end != word && *end == '\0';
+}
+
 // Upper limit of penalty Newton steps (stage 1 + stage 2): the core's kMaxNewtonIterations.
 const int kMaxNewtonSteps = spacetree::geometry::kMaxNewtonIterations;
 
@@ -50,12 +62,12 @@ const int kMaxNewtonSteps = spacetree::geometry::kMaxNewtonIterations;
 namespace LAMMPS_NS {
 struct PairTrimeshModel {
   ct::MeshContactOptions contact;
-  double stiffness = 0.0, damping = 0.0;        // eq. (1): S, D
-  double friction = 0.0, sliding_damping = 0.0; // Coulomb mu, viscous gamma
   bool rotation = true;
-  cm::ContactModelSpec spec;                    // sub-models (core contact_model/)
-  cm::ContactParameters parameters;             // their coefficients (every type pair)
+  TrimeshContactSettings settings;              // sub-models and explicit coefficients
   cm::ContactModelTable models;                 // one per type pair, built at init
+  FixTrimeshContactHistory *history = NULL;     // per-contact history (sub-models that keep it)
+  std::unique_ptr<cm::ContactHistoryMatcher> matcher;
+  std::vector<double> records;                  // one pair's new history records
 
   int threads = 0;                              // threads keyword: 0 = TBB default, 1 = serial
   std::unique_ptr<TrimeshParallelContacts> search;
@@ -73,7 +85,14 @@ struct PairTrimeshModel {
   // Grains against the walls of fix wall/gran (serially, after the pairs).
   std::unique_ptr<TrimeshWallContacts> walls;
   std::vector<TrimeshWallContact> wall_contacts;
+  std::vector<ct::ContactPoint> group_contacts;    // one pair's contacts (spheres, walls)
+  std::vector<Eigen::Vector3d> group_forces;       // their forces on the grain (walls)
 };
+}
+
+namespace {
+// The fix holding the per-contact history (ID and style: a restart file restores it by both).
+const char *const kHistoryFixId = "trimesh_contact_history";
 }
 
 PairTrimesh::PairTrimesh(LAMMPS *lmp) :
@@ -104,8 +123,13 @@ void PairTrimesh::allocate()
 
 void PairTrimesh::settings(int narg, char **arg)
 {
-  bool have_eps = false, have_s = false, have_d = false;
-  bool have_continuation = false;
+  // a repeated pair_style line starts from the defaults
+  model->settings = TrimeshContactSettings();
+  model->contact = ct::MeshContactOptions();
+  model->rotation = true;
+  model->threads = 0;
+  TrimeshContactSettings &cs = model->settings;
+  bool have_eps = false, have_continuation = false, have_tangential = false;
   // a Newton step count: an integer >= lo (the sum with the other stage is checked below)
   const auto newton_steps = [&](const char *kw, const char *val, long lo) {
     char *end = NULL;
@@ -118,6 +142,24 @@ void PairTrimesh::settings(int narg, char **arg)
     }
     return int(n);
   };
+  // a coefficient: a finite number > 0 (or >= 0)
+  const auto coefficient = [&](const char *kw, const char *val, bool positive) {
+    const double v = force->numeric(FLERR,val);
+    if (!std::isfinite(v) || v < 0.0 || (positive && v == 0.0)) {
+      std::string msg = std::string("Illegal pair_style trimesh command: ") + kw + " '" + val +
+                        "' must be a finite number " + (positive ? "> 0" : ">= 0");
+      error->all(FLERR,msg.c_str());
+    }
+    return v;
+  };
+  // a sub-model keyword of a slot (the core's registry names the choices)
+  const auto sub_model = [&](cm::Slot slot, const char *val) {
+    try { cm::findSubModel(slot,val); }
+    catch (const std::exception &e) {
+      error->all(FLERR,(std::string("Illegal pair_style trimesh command: ") + e.what()).c_str());
+    }
+    cs.spec[slot] = val;
+  };
   int iarg = 0;
   while (iarg < narg) {
     const char *kw = arg[iarg];
@@ -126,15 +168,23 @@ void PairTrimesh::settings(int narg, char **arg)
       error->all(FLERR,msg.c_str());
     }
     const char *val = arg[iarg+1];
-    if (strcmp(kw,"eps") == 0) { model->contact.epsilon = force->numeric(FLERR,val); have_eps = true; }
-    else if (strcmp(kw,"stiffness") == 0) { model->stiffness = force->numeric(FLERR,val); have_s = true; }
-    else if (strcmp(kw,"damping") == 0) { model->damping = force->numeric(FLERR,val); have_d = true; }
+    if (strcmp(kw,"eps") == 0) { model->contact.epsilon = coefficient(kw,val,true); have_eps = true; }
+    else if (strcmp(kw,"stiffness") == 0) cs.stiffness = coefficient(kw,val,true);
+    else if (strcmp(kw,"damping") == 0) cs.damping = coefficient(kw,val,false);
     else if (strcmp(kw,"friction") == 0) {
-      if (iarg+3 > narg) error->all(FLERR,"Illegal pair_style trimesh command: friction needs MU GAMMA");
-      model->friction = force->numeric(FLERR,val);
-      model->sliding_damping = force->numeric(FLERR,arg[iarg+2]);
-      iarg++;
-    } else if (strcmp(kw,"method") == 0) {
+      cs.friction = coefficient("friction MU",val,false);
+      // GAMMA (the viscous model's sliding coefficient) when a number follows
+      if (iarg+2 < narg && is_number(arg[iarg+2])) {
+        cs.sliding_damping = coefficient("friction GAMMA",arg[iarg+2],false);
+        iarg++;
+      }
+    } else if (strcmp(kw,"tangential_stiffness") == 0) cs.tangential_stiffness = coefficient(kw,val,true);
+    else if (strcmp(kw,"model") == 0) sub_model(cm::Slot::Normal,val);
+    else if (strcmp(kw,"damping_model") == 0) sub_model(cm::Slot::Damping,val);
+    else if (strcmp(kw,"tangential") == 0) { sub_model(cm::Slot::Tangential,val); have_tangential = true; }
+    else if (strcmp(kw,"rolling_friction") == 0) sub_model(cm::Slot::Rolling,val);
+    else if (strcmp(kw,"cohesion") == 0) sub_model(cm::Slot::Cohesion,val);
+    else if (strcmp(kw,"method") == 0) {
       try { model->contact.method = ct::parseTriangleDistanceMethod(val); }
       catch (const std::exception &) {
         std::string msg = std::string("Illegal pair_style trimesh command: method '") + val +
@@ -165,13 +215,27 @@ void PairTrimesh::settings(int narg, char **arg)
     }
     iarg += 2;
   }
-  if (!have_eps || !have_s || !have_d)
-    error->all(FLERR,"Illegal pair_style trimesh command: eps, stiffness and damping are required");
-  if (!(model->contact.epsilon > 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: eps must be > 0");
-  if (!(model->stiffness > 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: stiffness must be > 0");
-  if (!(model->damping >= 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: damping must be >= 0");
-  if (!(model->friction >= 0.0) || !(model->sliding_damping >= 0.0))
-    error->all(FLERR,"Illegal pair_style trimesh command: friction MU GAMMA must be >= 0");
+  if (!have_eps) error->all(FLERR,"Illegal pair_style trimesh command: eps is required");
+  cs.eps = model->contact.epsilon;
+  // `friction MU GAMMA` alone: the viscous model of eq. (1) (none unless both are > 0)
+  if (!have_tangential && !std::isnan(cs.friction) && !std::isnan(cs.sliding_damping) &&
+      cs.friction > 0.0 && cs.sliding_damping > 0.0)
+    cs.spec.tangential = "viscous";
+  if (cs.spec.tangential == "viscous" && std::isnan(cs.sliding_damping))
+    error->all(FLERR,"Illegal pair_style trimesh command: tangential viscous needs friction MU GAMMA "
+               "(GAMMA: sliding damping, N s/m)");
+  if (cs.spec.tangential != "viscous" && have_tangential && !std::isnan(cs.sliding_damping))
+    error->all(FLERR,"Illegal pair_style trimesh command: friction MU GAMMA: GAMMA is the sliding damping "
+               "of tangential viscous (give friction MU alone)");
+  if (cs.spec.tangential != "history" && !std::isnan(cs.tangential_stiffness))
+    error->all(FLERR,"Illegal pair_style trimesh command: tangential_stiffness needs tangential history");
+  if (cs.spec.damping == "none" && !std::isnan(cs.damping))
+    error->all(FLERR,"Illegal pair_style trimesh command: damping D with damping_model none");
+  // the history store exists from here on (thermo may name it; a restart file fills it)
+  if (cm::historySizeOf(cs.spec) > 0 && modify->find_fix(kHistoryFixId) < 0) {
+    char *fixarg[3] = {(char *) kHistoryFixId,(char *) "all",(char *) "trimesh/contact_history"};
+    modify->add_fix(3,fixarg);
+  }
   // Newton steps, defaults resolved by the core (penalty 8; hybrid 5 + 4, the two-stage hybrid)
   const ct::TriangleDistanceMethod method = model->contact.method;
   if (have_continuation && method != ct::TriangleDistanceMethod::Hybrid)
@@ -183,20 +247,6 @@ void PairTrimesh::settings(int narg, char **arg)
     snprintf(msg,sizeof(msg),"Illegal pair_style trimesh command: iterations %d + continuation %d "
              "must be <= %d Newton steps",stage1,stage2,kMaxNewtonSteps);
     error->all(FLERR,msg);
-  }
-  // the contact model: eq. (1), plus viscous friction with `friction MU GAMMA`
-  model->spec = cm::ContactModelSpec();
-  model->parameters = cm::ContactParameters();
-  model->parameters.set("stiffness",model->stiffness);
-  model->parameters.set("damping",model->damping);
-  if (model->friction > 0.0 && model->sliding_damping > 0.0) {
-    model->spec.tangential = "viscous";
-    model->parameters.set("friction",model->friction);
-    model->parameters.set("slidingDamping",model->sliding_damping);
-  }
-  try { cm::ContactModel probe(model->spec,model->parameters); }
-  catch (const std::exception &e) {
-    error->all(FLERR,(std::string("Illegal pair_style trimesh command: ") + e.what()).c_str());
   }
   // threads 0: TBB's default is every core this process may use; ranks that share a node share
   // those cores, so each takes its part (no oversubscription with several ranks per node)
@@ -246,19 +296,13 @@ void PairTrimesh::init_style()
   if (comm->ghost_velocity == 0)
     error->all(FLERR,"Pair style trimesh requires ghost atoms store velocity: use 'communicate single vel yes'");
   if (force->newton_pair)
-    error->all(FLERR,"Pair style trimesh requires newton off (granular half list, forces on owned atoms)");
+    error->all(FLERR,model->settings.spec.tangential == "history"
+               ? "Pair style trimesh requires newton off (granular half list, forces on owned atoms; "
+                 "tangential history is kept on the owned atoms of each pair)"
+               : "Pair style trimesh requires newton off (granular half list, forces on owned atoms)");
 
   templ = FixTrimeshTemplate::find(lmp,"Pair style trimesh");
   if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
-  try {
-    const cm::ContactParameters &p = model->parameters;
-    model->models = cm::ContactModelTable(atom->ntypes,model->spec,[&p](int,int) { return p; });
-  } catch (const std::exception &e) {
-    error->all(FLERR,(std::string("Pair style trimesh: ") + e.what()).c_str());
-  }
-
-  templ->set_halo(model->contact.epsilon);
-  templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
 
   // Types without template are spheres: they meet grains and obstacles here, each other through
   // pair_style gran (pair_style hybrid; compute() stops at a touching pair of spheres); their
@@ -273,12 +317,40 @@ void PairTrimesh::init_style()
   model->sphere_type_radius.assign(ntypes+1,0.0);
   MPI_Allreduce(mine.data(),model->sphere_type_radius.data(),ntypes+1,MPI_DOUBLE,MPI_MAX,world);
 
+  // the contact model of every type pair, from the keywords and the materials
+  TrimeshContactCoefficients coefficients(lmp);
+  model->models = coefficients.build(model->settings,templ,model->sphere_type_radius);
+  coefficients.report(model->models,model->settings,templ);
+  setup_history();
+
+  templ->set_halo(model->contact.epsilon);
+  templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
+
   if (!model->walls) model->walls.reset(new TrimeshWallContacts(lmp));
   model->walls->init(templ,model->contact);
 
   const int irequest = neighbor->request(this);
   neighbor->requests[irequest]->half = 0;
   neighbor->requests[irequest]->gran = 1;
+}
+
+/* The fix holding the per-contact history when the contact model keeps any (created by
+   settings(); a restart file restores it when its ID and style match); none otherwise. */
+void PairTrimesh::setup_history()
+{
+  const int size = model->models.historySize();
+  model->history = NULL;
+  model->matcher.reset();
+  if (size == 0) return;
+  const int ifix = modify->find_fix(kHistoryFixId);
+  if (ifix >= 0) model->history = dynamic_cast<FixTrimeshContactHistory*>(modify->fix[ifix]);
+  if (!model->history)
+    error->all(FLERR,"Pair style trimesh: fix trimesh_contact_history (its per-contact history) was "
+               "deleted or is not trimesh/contact_history");
+  cm::ContactHistoryMatchOptions match;
+  match.normalCosine = model->contact.mergeNormalCosine;
+  model->matcher.reset(new cm::ContactHistoryMatcher(size,match));
+  model->history->set_record_size(model->matcher->recordSize());
 }
 
 void PairTrimesh::init_list(int, NeighList *ptr)
@@ -421,72 +493,127 @@ void PairTrimesh::compute(int eflag, int vflag)
     model->sphere_offsets.push_back(model->sphere_contacts.size());
   }
 
-  // Forces: grain pairs in list order, then sphere pairs.
+  // Forces: grain pairs in list order, then sphere pairs, then grains against walls, each pair's
+  // contacts through the law of its type pair (with history: matched to the pair's previous
+  // records, which live on its owned atoms and vanish when the pair opens). A run's setup
+  // repeats the last force computation: dt 0 leaves the history as it is (LIGGGHTS'
+  // shearupdate 0).
+  const double history_dt = update->setupflag ? 0.0 : update->dt;
+  if (model->history) model->history->begin();
   const auto body_of = [&](int k, const ct::Pose &pose) {
     return trimesh_contact_body(templ->type_template(type[k]),pose,v[k],omega[k],rmass[k],radius[k],
                                 rotation);
   };
+  const auto edge = [&](int k) { return templ->type_template(type[k])->shape.minimumEdgeLength; };
   for (std::size_t kp = 0; kp < model->pairs.size(); kp++) {
     const std::vector<ct::ContactPoint> &contacts = model->search->contacts(kp);
     if (contacts.empty()) continue;
     const TrimeshCandidatePair &p = model->pairs[kp];
-    const dy::RigidBody ba = body_of(p.a,p.pose_a), bb = body_of(p.b,p.pose_b);
-    for (const ct::ContactPoint &c : contacts) add_contact_force(p.a,ba,type[p.a],p.b,bb,type[p.b],c);
+    add_pair_forces(p.a,body_of(p.a,p.pose_a),p.b,body_of(p.b,p.pose_b),0,contacts,
+                    0.5 * std::min(edge(p.a),edge(p.b)),history_dt,NULL);
   }
+  std::vector<ct::ContactPoint> &group = model->group_contacts;
   for (std::size_t kp = 0; kp < model->sphere_pairs.size(); kp++) {
     const std::size_t begin = model->sphere_offsets[kp], end = model->sphere_offsets[kp+1];
     if (begin == end) continue;
     const TrimeshCandidatePair &p = model->sphere_pairs[kp];
-    const dy::RigidBody ba = body_of(p.a,p.pose_a), bb = body_of(p.b,p.pose_b);
-    for (std::size_t c = begin; c < end; c++)
-      add_contact_force(p.a,ba,type[p.a],p.b,bb,type[p.b],model->sphere_contacts[c]);
+    group.assign(model->sphere_contacts.begin() + begin,model->sphere_contacts.begin() + end);
+    add_pair_forces(p.a,body_of(p.a,p.pose_a),p.b,body_of(p.b,p.pose_b),0,group,0.5 * edge(p.a),
+                    history_dt,NULL);
   }
 
   // Grains against walls (the grain first; a wall is a body of infinite mass moving with its
-  // surface velocity at the contact point).
+  // surface velocity at the contact point), one grain-wall pair (consecutive contacts) at a time.
   if (!model->walls->empty()) {
     model->walls->find(model->wall_contacts,model->stats);
-    for (const TrimeshWallContact &wc : model->wall_contacts) {
-      const int a = wc.atom;
+    const std::vector<TrimeshWallContact> &wcs = model->wall_contacts;
+    std::vector<Eigen::Vector3d> &forces = model->group_forces;
+    for (std::size_t k = 0; k < wcs.size();) {
+      std::size_t e = k;
+      group.clear();
+      while (e < wcs.size() && wcs[e].atom == wcs[k].atom && wcs[e].wall_key == wcs[k].wall_key)
+        group.push_back(wcs[e++].contact);
+      const int a = wcs[k].atom;
       ct::Pose pa;
       pa.position = Eigen::Vector3d(x[a][0],x[a][1],x[a][2]);
       pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
-      const dy::RigidBody ba = body_of(a,pa);
-      const Eigen::Vector3d fa =
-          add_contact_force(a,ba,type[a],-1,trimesh_wall_body(wc.contact.point,wc.wall_velocity),
-                            wc.wall_type,wc.contact);
-      model->walls->report_to_mesh(wc,fa);
+      // the wall's velocity at the pair's first contact point (each point's own below)
+      forces.resize(group.size());
+      add_pair_forces(a,body_of(a,pa),-1,trimesh_wall_body(group[0].point,wcs[k].wall_velocity),
+                      wcs[k].wall_type,group,0.5 * edge(a),history_dt,forces.data(),&wcs[k]);
+      for (std::size_t c = k; c < e; c++) model->walls->report_to_mesh(wcs[c],forces[c-k]);
+      k = e;
     }
   }
+  if (model->history) model->history->finish();
 }
 
-/* One contact by the pair style's law: the force on the first body a (its opposite on b, b < 0:
-   a wall, nothing to add) and the torques about each centre; only to atoms this rank owns
-   (newton off: a pair across two ranks is computed on both). */
+/* The contacts of one body pair: a (first, owned or ghost) and b (second; b < 0: a wall of
+   material type wall_type, whose contacts wall[0..n) give each point's wall velocity and the
+   history key) by the law of their type pair, forces and torques to the atoms this rank owns
+   (newton off: a pair across two ranks is computed on both, in the same body order). With
+   history, the pair's records are read from an owned atom (keyed by the partner's tag, a wall's
+   key for a wall), matched to these contacts within match_distance, advanced by dt and stored
+   on every owned atom of the pair. force_on_a (if given): the force on a of each contact. */
 
-Eigen::Vector3d PairTrimesh::add_contact_force(int a, const dy::RigidBody &ba, int type_a, int b,
-                                               const dy::RigidBody &bb, int type_b,
-                                               const ct::ContactPoint &c)
+void PairTrimesh::add_pair_forces(int a, const dy::RigidBody &ba, int b, const dy::RigidBody &bb,
+                                  int wall_type, const std::vector<ct::ContactPoint> &contacts,
+                                  double match_distance, double dt, Eigen::Vector3d *force_on_a,
+                                  const TrimeshWallContact *wall)
 {
   double **f = atom->f, **torque = atom->torque;
+  const int *type = atom->type, *tag = atom->tag;
   const int nlocal = atom->nlocal;
-  const bool a_owned = a >= 0 && (force->newton_pair || a < nlocal);
+  const bool a_owned = force->newton_pair || a < nlocal;
   const bool b_owned = b >= 0 && (force->newton_pair || b < nlocal);
-  stat_max_penetration = std::max(stat_max_penetration,c.penetration);
-  const cm::Contact k = cm::makeContact(ba,bb,c.point,c.normal,c.penetration);
-  // on the first body; the second gets -fa
-  const Eigen::Vector3d fa = model->models.at(type_a,type_b).evaluate(k,nullptr,update->dt).forceOnFirst;
-  if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
-  if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
-  if (model->rotation) {
-    if (a_owned) {
-      const Eigen::Vector3d tq = (c.point - ba.position).cross(fa);
-      torque[a][0] += tq[0]; torque[a][1] += tq[1]; torque[a][2] += tq[2];
-    }
-    if (b_owned) {
-      const Eigen::Vector3d tq = (c.point - bb.position).cross(-fa);
-      torque[b][0] += tq[0]; torque[b][1] += tq[1]; torque[b][2] += tq[2];
+  if (!a_owned && !b_owned) return;
+  const int partner_of_a = b >= 0 ? tag[b] : wall->wall_key;
+  const cm::ContactModel &law = model->models.at(type[a],b >= 0 ? type[b] : wall_type);
+
+  double *slots = NULL;
+  int stride = 0;
+  FixTrimeshContactHistory *history = model->history;
+  if (history) {
+    const int owner = a_owned ? a : b, partner = a_owned ? partner_of_a : tag[a];
+    int count = 0;
+    const double *previous = history->lookup(owner,partner,count);
+    ct::Pose pa;
+    pa.position = ba.position;
+    pa.orientation = ba.orientation;
+    model->matcher->setDistance(match_distance);
+    model->matcher->match(previous,std::size_t(count),contacts,pa,model->records);
+    slots = model->records.data() + cm::kContactAnchorDoubles;
+    stride = model->matcher->recordSize();
+  }
+
+  dy::RigidBody wall_body = bb;
+  for (std::size_t kc = 0; kc < contacts.size(); kc++) {
+    const ct::ContactPoint &c = contacts[kc];
+    if (wall) wall_body = trimesh_wall_body(c.point,wall[kc].wall_velocity);
+    stat_max_penetration = std::max(stat_max_penetration,c.penetration);
+    const cm::Contact k = cm::makeContact(ba,wall ? wall_body : bb,c.point,c.normal,c.penetration);
+    // on the first body; the second gets -fa (and -ta)
+    const cm::ContactForces out = law.evaluate(k,slots ? slots + kc*stride : NULL,dt);
+    const Eigen::Vector3d &fa = out.forceOnFirst;
+    if (force_on_a) force_on_a[kc] = fa;
+    if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
+    if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
+    if (model->rotation) {
+      if (a_owned) {
+        Eigen::Vector3d tq = (c.point - ba.position).cross(fa);
+        if (law.rolling()) tq += out.torqueOnFirst;
+        torque[a][0] += tq[0]; torque[a][1] += tq[1]; torque[a][2] += tq[2];
+      }
+      if (b_owned) {
+        Eigen::Vector3d tq = (c.point - bb.position).cross(-fa);
+        if (law.rolling()) tq -= out.torqueOnFirst;
+        torque[b][0] += tq[0]; torque[b][1] += tq[1]; torque[b][2] += tq[2];
+      }
     }
   }
-  return fa;
+  if (history) {
+    const int n = int(contacts.size());
+    if (a_owned) history->store(a,partner_of_a,model->records.data(),n);
+    if (b_owned) history->store(b,tag[a],model->records.data(),n);
+  }
 }

@@ -1,27 +1,30 @@
 /* spacetree-dem: contacts of triangulated rigid particles (paper §3, §6.2; core:
-   src/core/contact/MeshContact, src/core/contact_model/ContactModel).
+   src/core/contact/MeshContact, src/core/contact_model/ContactModel). Syntax and units:
+   docs/pair_trimesh.md.
 
-     pair_style trimesh eps E stiffness S damping D [method exact|penalty|hybrid]
-                        [iterations K] [continuation C] [friction MU GAMMA] [rotation yes|no]
-                        [threads N]
+     pair_style trimesh eps E [model halo] [damping_model approach|none]
+                        [tangential none|viscous|history] [rolling_friction none]
+                        [cohesion none|sjkr] [stiffness S] [damping D] [friction MU [GAMMA]]
+                        [tangential_stiffness KT] [method exact|penalty|hybrid] [iterations K]
+                        [continuation C] [rotation yes|no] [threads N]
      pair_coeff * *
 
    Candidate pairs come from a granular half list (newton off; `neighbor ... bin` or
    `neighbor ... spacetree`) built on radius = bounding radius + E. Per pair: bounding-sphere
-   precheck |xi - xj| < Ri + Rj + 2E, then the core's triangle checks; a contact where two
-   surfaces are closer than 2E, force per eq. (1) (core ContactModel): spring on the halo
-   overlap plus damping while approaching; Coulomb friction only with `friction MU`, torques
-   and angular velocities only with `rotation yes` (default). Obstacles (fixed template
+   precheck |xi - xj| < Ri + Rj + 2E, then the core's triangle checks (serially or as TBB tasks,
+   trimesh_parallel_contacts.h); forces per contact point from the core's ContactModel of the
+   type pair (sub-models named by the keywords, coefficients from the keywords or the LIGGGHTS
+   materials: trimesh_contact_coefficients.h). Sub-models with per-contact history (tangential
+   history) keep it in fix trimesh_contact_history, per particle pair on the owned atoms
+   (fix_trimesh_contact_history.h), matched step to step by the core's ContactHistoryMatcher.
+   Torques and angular velocities only with `rotation yes` (default). Obstacles (fixed template
    types) have infinite mass and move with their atom's velocity and angular velocity (fix
    move/trimesh). Types without template are spheres (core radius r - E plus the halo): against
    grains and obstacles here, exact sphere-triangle contacts (core SphereMeshContact); sphere
    pairs belong to pair gran (pair_style hybrid). Grains against fix wall/gran walls by their
-   surfaces: trimesh_wall_contacts.h. Every contact goes through the one law of its type pair
-   (add_contact_force). Statistics: compute trimesh/contacts. `threads N`: the triangle
-   checks of a step as TBB tasks on N threads (0 = TBB default, 1 = serial; same trajectory bit
-   for bit, trimesh_parallel_contacts.h). Newton steps of the penalty kernel: `iterations K`
-   (penalty: default 8; hybrid stage 1: default 5), `continuation C` (hybrid only: C more steps
-   for the pairs stage 1 leaves uncertified, default 4, 0 = single stage; K + C <= 32). */
+   surfaces: trimesh_wall_contacts.h (history keyed by the wall). Every contact kind goes through
+   the one law of its type pair and the same history (add_pair_forces). Statistics: compute
+   trimesh/contacts. */
 
 #ifdef PAIR_CLASS
 
@@ -44,6 +47,7 @@ namespace LAMMPS_NS {
 
 struct PairTrimeshModel;
 struct TrimeshCandidatePair;
+struct TrimeshWallContact;
 
 class PairTrimesh : public Pair {
  public:
@@ -62,13 +66,6 @@ class PairTrimesh : public Pair {
   // Of the last compute, summed over ranks: contacts, body pairs tested, triangle pairs
   // checked, hybrid fallbacks; and the largest penetration (halo overlap eps - d/2, <= eps).
   void contact_statistics(double out[5]);
-  // Adds the force of contact c between a (first) and b (second; b < 0: a wall) by the pair
-  // style's law for the type pair (type_a, type_b; a wall's material type) to the atoms this
-  // rank owns, with torques about ba's and bb's positions; returns the force on a.
-  Eigen::Vector3d add_contact_force(int a, const spacetree::dynamics::RigidBody &ba, int type_a,
-                                    int b, const spacetree::dynamics::RigidBody &bb, int type_b,
-                                    const spacetree::contact::ContactPoint &c);
-
   // The last compute's body pairs that passed the bounding-sphere precheck (local atom indices
   // in the canonical body order, shapes, poses) with their contact points (world frame), and the
   // contact search's options (halo, distance method): what fix adapt/timestep reads for its veto,
@@ -81,6 +78,14 @@ class PairTrimesh : public Pair {
 
  private:
   void allocate();
+  void setup_history();
+  // The contacts of body pair (a, b) (b < 0: a wall; wall: its contacts) by the law of their
+  // type pair, with history; pair_trimesh.cpp.
+  void add_pair_forces(int a, const spacetree::dynamics::RigidBody &ba, int b,
+                       const spacetree::dynamics::RigidBody &bb, int wall_type,
+                       const std::vector<spacetree::contact::ContactPoint> &contacts,
+                       double match_distance, double dt, Eigen::Vector3d *force_on_a,
+                       const TrimeshWallContact *wall = NULL);
 
   std::unique_ptr<PairTrimeshModel> model;
   class FixTrimeshTemplate *templ;

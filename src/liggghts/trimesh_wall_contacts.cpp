@@ -32,6 +32,7 @@ namespace PWD = PRIMITIVE_WALL_DEFINITIONS;
 
 struct TrimeshWallContacts::MeshWall {
   FixMeshSurface *fix = NULL;
+  int key = 0;                // history partner key of its contacts (< 0)
   geo::RigidShape shape;
   ct::Pose pose;              // body frame of the shape -> world (a translation)
   std::vector<int> ids;       // mesh->id() of the triangles the shape was built from, in order
@@ -43,6 +44,7 @@ struct TrimeshWallContacts::MeshWall {
 
 struct TrimeshWallContacts::Wall {
   FixWallGran *fix = NULL;
+  int key = 0;             // history partner key of a primitive wall's contacts (< 0)
   // primitive: its patch, plane (point, normal) or cylinder (point, axis, radius)
   bool primitive = false, cylinder = false;
   geo::RigidShape patch;   // plane; cylinder: its outer side (inside: exact, by the vertices)
@@ -82,6 +84,7 @@ void TrimeshWallContacts::init(FixTrimeshTemplate *templ, const ct::MeshContactO
     if (!tt->fixed) grain_reach = std::max(grain_reach,tt->boundingRadius + 2.0*eps_);
   }
 
+  int next_key = -1;
   for (int i = 0; i < modify->nfix; i++) {
     if (strcmp(modify->fix[i]->style,"wall/gran") != 0) continue;
     FixWallGran *fwg = static_cast<FixWallGran *>(modify->fix[i]);
@@ -91,9 +94,12 @@ void TrimeshWallContacts::init(FixTrimeshTemplate *templ, const ct::MeshContactO
     int shear_dim = -1;
     double vshear = 0.0;
     const bool shear = fwg->primitive_shear(shear_dim,vshear);
+    // history partner keys: negative (atom tags are positive), one per primitive wall or mesh
+    w->key = next_key--;
     if (fwg->is_mesh_wall()) {
       for (int k = 0; k < fwg->n_meshes(); k++) {
         MeshWall m;
+        m.key = next_key--;
         m.fix = fwg->mesh_list()[k];
         m.stress = m.fix->trackStress();
         w->meshes.push_back(m);
@@ -216,6 +222,7 @@ void TrimeshWallContacts::find_primitive(Wall &w, std::vector<TrimeshWallContact
       wc.mesh = NULL;
       wc.mesh_triangle = -1;
       wc.wall_type = w.fix->atom_type_wall();
+      wc.wall_key = w.key;
       out.push_back(wc);
     }
   });
@@ -298,6 +305,7 @@ void TrimeshWallContacts::find_mesh(Wall &w, MeshWall &m, std::vector<TrimeshWal
       wc.mesh = m.stress ? m.fix : NULL;
       wc.mesh_triangle = cp.secondTriangle;
       wc.wall_type = m.fix->atomTypeWall();
+      wc.wall_key = m.key;
       if (vmesh) {
         // node velocities at the contact point's barycentric coordinates in its wall triangle
         // (exact for the affine velocity field of a rigid motion, also outside the triangle)

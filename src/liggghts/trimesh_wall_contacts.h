@@ -46,6 +46,7 @@ struct TrimeshWallContact {
   class FixMeshSurface *mesh;
   int mesh_triangle;
   int wall_type;
+  int wall_key;   // < 0, one per wall (primitive) or mesh of a wall: the grain's history partner
 };
 
 class TrimeshWallContacts : protected Pointers {

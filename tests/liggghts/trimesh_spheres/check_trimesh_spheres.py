@@ -81,9 +81,11 @@ def case_mixed(R):
     t = res[1]
     check(min(t["Atoms"]) == max(t["Atoms"]) == 49, "mixed: no particle lost (49 atoms)")
     check(0 < max(t["pen"]) < EPS, "mixed: largest penetration %.3g m below eps" % max(t["pen"]))
-    check(min(t["zmin"]) > 0 and t["zmax"][-1] > 0.006,
-          "mixed: every particle stays above the floor (lowest centre %.3g m), the bed is several "
-          "particles high (%.3g m)" % (min(t["zmin"]), t["zmax"][-1]))
+    # 48 particles of 3 mm on a 24 mm square floor (about 64 sites): a second layer, its
+    # centres above 1.5 diameters
+    check(min(t["zmin"]) > 0 and t["zmax"][-1] > 0.0045,
+          "mixed: every particle stays above the floor (lowest centre %.3g m), the bed has a second "
+          "layer (highest centre %.3g m)" % (min(t["zmin"]), t["zmax"][-1]))
     check(t["ke"][-1] < 0.01 * max(t["ke"]), "mixed: the pour comes to rest (KE %.3g J of peak %.3g J)"
           % (t["ke"][-1], max(t["ke"])))
     d = max(abs(x - y) / max(abs(x), 1e-30) for x, y in zip(res[1]["ke"], res[2]["ke"]))
