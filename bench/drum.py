@@ -5,7 +5,12 @@ Reports, per dumped frame, whether every particle is inside the cavity, the drum
 angle against omega t, and the bed's dynamic angle of repose; writes CSV and PNG.
 
   drum.py [--exe build/liggghts-spacetree] [--np 1] [--turns 2] [--period 1.2] [--settle 10000]
-          [--dt 4e-5] [--every 1000] [--out bench/results/drum] [--workdir DIR] [--replot]
+          [--dt 4e-5] [--every 1000] [--scene full|small] [--out bench/results/drum]
+          [--workdir DIR] [--replot]
+
+Scenes: full (the default: cavity radius 35 mm, length 20 mm, 300 spheres of 4 mm and 300 dented
+grains of radius 2 mm) and small (the CTest's drum, for long runs: radius 15 mm, length 12 mm, 20
+spheres of 3 mm and 20 grains of radius 1.5 mm).
 
 Inside: the particle centre lies within the cavity (axisymmetric: radius from the y axis, |y|)
 shrunk by the particle's inscribed radius (spheres: their core, radius - eps; dented grains: the
@@ -36,18 +41,27 @@ from common.outputs import parse_dump_rows  # noqa: E402  (dump custom reader)
 sys.path.insert(0, DRUM)
 from drum_analysis import Cavity, angle_error_about_y, free_surface  # noqa: E402
 
-# in.drum's defaults: cavity radius and length, halo, sphere and grain radii
-CAVITY = Cavity(R=0.035, L=0.02, eps=5e-5, sphere_radius=0.002, grain_radius=0.002)
+# per scene: the cavity (radius, length, halo, sphere and grain radii), make_drum.py's arguments
+# and in.drum's variables (full: in.drum's and make_drum.py's defaults)
+SCENES = {
+    "full": dict(cavity=Cavity(R=0.035, L=0.02, eps=5e-5, sphere_radius=0.002, grain_radius=0.002),
+                 make=[], deck={}),
+    "small": dict(cavity=Cavity(R=0.015, L=0.012, eps=5e-5, sphere_radius=0.0015, grain_radius=0.0015),
+                  make=["--radius", "0.015", "--length", "0.012", "--wall", "0.002", "--segments", "36",
+                        "--particles", "40", "--particle-radius", "0.0015", "--spacing", "0.0034"],
+                  deck=dict(diameter=0.003, grain=0.0015, half=0.02, halfy=0.01)),
+}
+CAVITY = SCENES["full"]["cavity"]
 
 
 def run(args):
     os.makedirs(args.workdir, exist_ok=True)
     subprocess.run([sys.executable, os.path.join(DRUM, "make_drum.py"),
-                    os.path.join(args.workdir, "drum.stl"), os.path.join(args.workdir, "positions.in")],
-                   check=True)
+                    os.path.join(args.workdir, "drum.stl"), os.path.join(args.workdir, "positions.in")]
+                   + SCENES[args.scene]["make"], check=True)
     cmd = [args.exe, "-in", os.path.join(DRUM, "in.drum"), "-echo", "none", "-log", "log.drum"]
-    for k, v in (("turns", args.turns), ("period", args.period), ("settle", args.settle),
-                 ("dt", args.dt), ("every", args.every), ("out", "drum")):
+    for k, v in [("turns", args.turns), ("period", args.period), ("settle", args.settle),
+                 ("dt", args.dt), ("every", args.every), ("out", "drum")] + list(SCENES[args.scene]["deck"].items()):
         cmd += ["-var", k, str(v)]
     if args.np > 1:
         cmd = ["mpirun", "-np", str(args.np)] + cmd
@@ -156,10 +170,16 @@ def main():
     p.add_argument("--settle", type=int, default=10000)
     p.add_argument("--dt", type=float, default=4e-5)
     p.add_argument("--every", type=int, default=1000)
+    p.add_argument("--scene", choices=sorted(SCENES), default="full")
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "drum"))
     p.add_argument("--workdir", default=os.path.join(ROOT, "build", "bench_drum"))
     p.add_argument("--replot", action="store_true", help="analyse the dumps in --workdir again")
     args = p.parse_args()
+    global CAVITY
+    CAVITY = SCENES[args.scene]["cavity"]
+    if args.settle % args.every:
+        # the first dump is then after the rotation started: it would not be the drum's start pose
+        p.error("--every must divide --settle (the first dumped frame is the drum at rest)")
     if not args.replot:
         run(args)
     analyse(args)
