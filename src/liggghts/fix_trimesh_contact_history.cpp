@@ -87,17 +87,19 @@ double FixTrimeshContactHistory::compute_vector(int n)
 {
   // each pair is stored on both its atoms when both are owned, on one atom per rank otherwise:
   // every record is counted with weight 1/2 per atom that holds it, and pairs with one atom
-  // owned here are held there twice in total (once per rank)
+  // owned here are held there twice in total (once per rank); a grain-wall pair (partner key
+  // < 0) is held by the grain alone: weight 1
   double local[2] = {0.0,0.0};
   const int history = record_size_ - spacetree::contact_model::kContactAnchorDoubles;
   for (int i = 0; i < atom->nlocal; i++) {
     const std::vector<double> &l = current_[i];
     for (std::size_t m = 0; m + 2 <= l.size(); m += 2 + std::size_t(l[m+1]) * std::size_t(record_size_)) {
       const int count = static_cast<int>(l[m+1]);
-      local[0] += 0.5 * count;
+      const double weight = l[m] < 0.0 ? 1.0 : 0.5;
+      local[0] += weight * count;
       for (int r = 0; r < count; r++)
         for (int h = 0; h < history; h++)
-          local[1] += 0.5 * std::fabs(l[m + 2 + std::size_t(r) * std::size_t(record_size_) +
+          local[1] += weight * std::fabs(l[m + 2 + std::size_t(r) * std::size_t(record_size_) +
                                        spacetree::contact_model::kContactAnchorDoubles + h]);
     }
   }

@@ -114,6 +114,7 @@ FixTrimeshTemplate::FixTrimeshTemplate(LAMMPS *lmp, int narg, char **arg) :
 
   bool any = false;
   obstacle_types_.assign(atom->ntypes+1,0);
+  moving_types_.assign(atom->ntypes+1,0);
   for (int t = 1; t <= atom->ntypes; t++) {
     any = any || templates_[t];
     obstacle_types_[t] = templates_[t] && templates_[t]->fixed;
@@ -164,6 +165,16 @@ void FixTrimeshTemplate::init()
   state_ = ifix >= 0 ? dynamic_cast<FixTrimeshState*>(modify->fix[ifix]) : NULL;
   if (!state_) error->all(FLERR,"Fix trimesh/template: its fix trimesh/state was deleted");
   check_insertion_templates();
+  // walls meet grains by their surfaces through pair_style trimesh; without it they would push
+  // the grains' bounding spheres
+  if (!force->pair_match("trimesh",1))
+    for (int i = 0; i < modify->nfix; i++)
+      if (strcmp(modify->fix[i]->style,"wall/gran") == 0) {
+        std::string msg = std::string("Fix trimesh/template ") + id + ": fix wall/gran " +
+                          modify->fix[i]->id + " would treat the grains as their bounding spheres: "
+                          "use pair_style trimesh (alone or in pair_style hybrid)";
+        error->all(FLERR,msg.c_str());
+      }
   apply_to_atoms(false);
 }
 
@@ -237,6 +248,16 @@ void FixTrimeshTemplate::pre_neighbor()
   state_->forward_shapes();
 }
 
+void FixTrimeshTemplate::set_moving(int t, bool moving)
+{
+  if (t >= 1 && t < static_cast<int>(moving_types_.size())) moving_types_[t] = moving;
+}
+
+bool FixTrimeshTemplate::is_moving(int t) const
+{
+  return t >= 1 && t < static_cast<int>(moving_types_.size()) && moving_types_[t];
+}
+
 void FixTrimeshTemplate::set_halo(double eps)
 {
   halo_ = eps;
@@ -289,6 +310,9 @@ void FixTrimeshTemplate::apply_to_atoms(bool initialise_poses)
     radius[i] = tt->boundingRadius + halo_;
     rmass[i] = tt->mass;
     if (density) density[i] = tt->density;
+    // a static obstacle's surface does not move, whatever a `velocity` command set
+    if (tt->fixed && !moving_types_[type[i]])
+      for (int k = 0; k < 3; k++) atom->v[i][k] = omega[i][k] = 0.0;
     const double n2 = quat[i][0]*quat[i][0] + quat[i][1]*quat[i][1] +
                       quat[i][2]*quat[i][2] + quat[i][3]*quat[i][3];
     // restart / earlier run: keep the pose; init() only refreshes radius and mass

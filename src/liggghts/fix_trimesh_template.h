@@ -60,6 +60,11 @@ class FixTrimeshTemplate : public Fix {
   double halo() const { return halo_; }
   class FixTrimeshState *state() const { return state_; }
 
+  // Obstacle types whose motion a fix prescribes (fix move/trimesh): their atoms keep the
+  // velocity and angular velocity it sets; other obstacles' are held at zero.
+  void set_moving(int type, bool moving);
+  bool is_moving(int type) const;
+
   // Owned atoms of template types whose orientation is unset (new atoms), summed over ranks.
   bigint count_new_atoms() const;
   // Sets radius and rmass of owned atoms of template types and, with initialise_poses, the
@@ -73,6 +78,7 @@ class FixTrimeshTemplate : public Fix {
 
   std::vector<std::unique_ptr<TrimeshTypeTemplate>> templates_;   // index = type
   std::vector<int> obstacle_types_;                                // index = type
+  std::vector<int> moving_types_;                                  // index = type
   class FixTrimeshState *state_;
   double halo_;
   enum Orientation { OrientFile, OrientIdentity, OrientRandom } orientation_;

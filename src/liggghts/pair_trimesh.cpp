@@ -32,8 +32,11 @@
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
+#include "trimesh_contact_body.h"
 #include "trimesh_contact_coefficients.h"
 #include "trimesh_parallel_contacts.h"
+#include "trimesh_wall_contacts.h"
+#include "contact/SphereMeshContact.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -42,21 +45,6 @@ namespace cm = spacetree::contact_model;
 namespace dy = spacetree::dynamics;
 
 namespace {
-
-// The core's view of atom i for the contact kinematics: pose, velocity, angular velocity
-// (as angular momentum; none without rotation), infinite mass for obstacles.
-dy::RigidBody body(const TrimeshTypeTemplate &tt, const ct::Pose &pose, const double *v,
-                   const double *omega, double rmass, bool rotation)
-{
-  dy::RigidBody b = tt.fixed ? dy::RigidBody::fixed(pose.position,pose.orientation)
-                             : dy::RigidBody::free(rmass,tt.inertia * (rmass / tt.mass),
-                                                   pose.position,pose.orientation);
-  if (!tt.fixed) {
-    b.velocity = Eigen::Vector3d(v[0],v[1],v[2]);
-    if (rotation) b.setAngularVelocity(Eigen::Vector3d(omega[0],omega[1],omega[2]));
-  }
-  return b;
-}
 
 // Whether a word is a number (a keyword's optional value follows).
 bool is_number(const char *word)
@@ -85,6 +73,20 @@ struct PairTrimeshModel {
   std::unique_ptr<TrimeshParallelContacts> search;
   std::vector<TrimeshCandidatePair> pairs;
   ct::MeshContactStatistics stats;
+
+  // Spheres (types without template) against grains and obstacles: candidates (a: the body,
+  // b: the sphere), searched on the calling thread, and their contacts (offsets per candidate).
+  std::unique_ptr<ct::SphereMeshContactFinder> spheres;
+  std::vector<TrimeshCandidatePair> sphere_pairs;
+  std::vector<ct::ContactPoint> sphere_contacts;
+  std::vector<std::size_t> sphere_offsets;
+  std::vector<double> sphere_type_radius;      // per type without template: largest radius
+
+  // Grains against the walls of fix wall/gran (serially, after the pairs).
+  std::unique_ptr<TrimeshWallContacts> walls;
+  std::vector<TrimeshWallContact> wall_contacts;
+  std::vector<ct::ContactPoint> group_contacts;    // one pair's contacts (spheres, walls)
+  std::vector<Eigen::Vector3d> group_forces;       // their forces on the grain (walls)
 };
 }
 
@@ -258,6 +260,7 @@ void PairTrimesh::settings(int narg, char **arg)
     if (on_node > 1) threads = std::max(1,tbb_default/on_node);
   }
   model->search.reset(new TrimeshParallelContacts(model->contact,threads));
+  model->spheres.reset(new ct::SphereMeshContactFinder(model->contact));
   if (comm->me == 0 && screen) {
     if (method == ct::TriangleDistanceMethod::Hybrid)
       fprintf(screen,"pair_style trimesh: method hybrid, %d Newton steps%s%s\n",stage1,
@@ -301,14 +304,30 @@ void PairTrimesh::init_style()
   templ = FixTrimeshTemplate::find(lmp,"Pair style trimesh");
   if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
 
+  // Types without template are spheres: they meet grains and obstacles here, each other through
+  // pair_style gran (pair_style hybrid; compute() stops at a touching pair of spheres); their
+  // largest radius sizes the cut-offs (insertion templates and existing atoms, as pair gran).
+  const int ntypes = atom->ntypes;
+  std::vector<double> mine(ntypes+1,0.0);
+  for (int t = 1; t <= ntypes; t++)
+    if (!templ->type_template(t))
+      for (int k = 0; k < modify->nfix; k++) mine[t] = std::max(mine[t],modify->fix[k]->max_rad(t));
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!templ->type_template(atom->type[i])) mine[atom->type[i]] = std::max(mine[atom->type[i]],atom->radius[i]);
+  model->sphere_type_radius.assign(ntypes+1,0.0);
+  MPI_Allreduce(mine.data(),model->sphere_type_radius.data(),ntypes+1,MPI_DOUBLE,MPI_MAX,world);
+
   // the contact model of every type pair, from the keywords and the materials
   TrimeshContactCoefficients coefficients(lmp);
-  model->models = coefficients.build(model->settings,templ);
+  model->models = coefficients.build(model->settings,templ,model->sphere_type_radius);
   coefficients.report(model->models,model->settings,templ);
   setup_history();
 
   templ->set_halo(model->contact.epsilon);
   templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
+
+  if (!model->walls) model->walls.reset(new TrimeshWallContacts(lmp));
+  model->walls->init(templ,model->contact);
 
   const int irequest = neighbor->request(this);
   neighbor->requests[irequest]->half = 0;
@@ -341,9 +360,13 @@ void PairTrimesh::init_list(int, NeighList *ptr)
 
 double PairTrimesh::init_one(int i, int j)
 {
-  // bounding radius + eps of each type (fixed obstacles included): the gran list uses the
-  // per-atom radius; this cut-off sizes bins and the ghost shell
-  return templ->max_rad(i) + templ->max_rad(j);
+  // bounding radius + eps of each type (fixed obstacles included), the largest radius of a
+  // sphere type: the gran list uses the per-atom radius; this cut-off sizes bins and the ghost
+  // shell
+  const auto reach = [&](int t) {
+    return templ->type_template(t) ? templ->max_rad(t) : model->sphere_type_radius[t];
+  };
+  return reach(i) + reach(j);
 }
 
 void *PairTrimesh::extract(const char *name, int &dim)
@@ -389,14 +412,11 @@ void PairTrimesh::compute(int eflag, int vflag)
   // ghosts need the owners' current orientation (positions came with the regular comm)
   templ->state()->forward_orientations();
 
-  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega;
-  double **torque = atom->torque;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
   double *rmass = atom->rmass, *radius = atom->radius;
   int *type = atom->type, *tag = atom->tag;
   double **quat = templ->state()->quat;
-  const int nlocal = atom->nlocal;
   const bool rotation = model->rotation;
-  const double dt = update->dt;
 
   model->stats = ct::MeshContactStatistics();
   stat_max_penetration = 0.0;
@@ -406,21 +426,44 @@ void PairTrimesh::compute(int eflag, int vflag)
   int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
 
+  model->sphere_pairs.clear();
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const TrimeshTypeTemplate *ti = templ->type_template(type[i]);
-    if (!ti) continue;
     int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const TrimeshTypeTemplate *tj = templ->type_template(type[j]);
-      if (!tj || (ti->fixed && tj->fixed)) continue;
+      if (ti && tj && ti->fixed && tj->fixed) continue;
 
       // bounding-sphere precheck on radius = R + eps: surfaces closer than 2 eps needs this
+      // (a sphere's radius is its outer surface: core r - eps plus the halo)
       const double dx = x[i][0]-x[j][0], dy = x[i][1]-x[j][1], dz = x[i][2]-x[j][2];
       const double radsum = radius[i] + radius[j];
       if (dx*dx + dy*dy + dz*dz >= radsum*radsum) continue;
+      if (!ti && !tj) {
+        char msg[512];
+        snprintf(msg,sizeof(msg),"Pair style trimesh: spheres %d and %d (types %d and %d have no "
+                 "template in fix trimesh/template) touch: sphere-sphere contacts need pair_style "
+                 "gran, e.g. 'pair_style hybrid gran ... trimesh ...' with 'pair_coeff %d %d gran'",
+                 tag[i],tag[j],type[i],type[j],std::min(type[i],type[j]),std::max(type[i],type[j]));
+        error->one(FLERR,msg);
+      }
+
+      const auto pose_of = [&](int k) {
+        ct::Pose p;
+        p.position = Eigen::Vector3d(x[k][0],x[k][1],x[k][2]);
+        if (templ->type_template(type[k]))
+          p.orientation = Eigen::Quaterniond(quat[k][0],quat[k][1],quat[k][2],quat[k][3]);
+        return p;
+      };
+      if (!ti || !tj) {   // a sphere against a grain or an obstacle: the body first
+        const int a = ti ? i : j, b = ti ? j : i;
+        const TrimeshTypeTemplate *ta = ti ? ti : tj;
+        model->sphere_pairs.push_back({a,b,&ta->shape,NULL,pose_of(a),pose_of(b)});
+        continue;
+      }
 
       // canonical body order, the same on every rank (newton off: computed on both)
       model->pairs.push_back(canonical_candidate_pair(i,j,*ti,*tj,tag,x,quat));
@@ -434,68 +477,143 @@ void PairTrimesh::compute(int eflag, int vflag)
     error->one(FLERR,(std::string("pair_style trimesh: contact search failed: ") + e.what()).c_str());
   }
 
-  // Forces, candidate by candidate and contact by contact in list order. With history: the
-  // pair's previous records come from an owned atom of the pair, are matched to this step's
-  // contact points, advance with them and are stored on every owned atom of the pair; pairs
-  // that are not in contact any more leave nothing (finish). A run's setup repeats the last
-  // force computation: dt 0 leaves the history as it is (LIGGGHTS' shearupdate 0).
-  FixTrimeshContactHistory *history = model->history;
-  cm::ContactHistoryMatcher *matcher = model->matcher.get();
-  const double history_dt = update->setupflag ? 0.0 : dt;
-  if (history) history->begin();
+  // Spheres against bodies, serially (a few closest points per pair).
+  model->sphere_contacts.clear();
+  model->sphere_offsets.assign(1,0);
+  for (const TrimeshCandidatePair &p : model->sphere_pairs) {
+    if (!(radius[p.b] > model->contact.epsilon)) {
+      char msg[256];
+      snprintf(msg,sizeof(msg),"Pair style trimesh: sphere atom %d has radius %g m, not above eps "
+               "%g m (a sphere is a rigid core of radius r - eps plus the halo)",tag[p.b],radius[p.b],
+               model->contact.epsilon);
+      error->one(FLERR,msg);
+    }
+    model->spheres->find(*p.shape_a,p.pose_a,p.pose_b.position,radius[p.b],model->sphere_contacts,
+                         &model->stats);
+    model->sphere_offsets.push_back(model->sphere_contacts.size());
+  }
+
+  // Forces: grain pairs in list order, then sphere pairs, then grains against walls, each pair's
+  // contacts through the law of its type pair (with history: matched to the pair's previous
+  // records, which live on its owned atoms and vanish when the pair opens). A run's setup
+  // repeats the last force computation: dt 0 leaves the history as it is (LIGGGHTS'
+  // shearupdate 0).
+  const double history_dt = update->setupflag ? 0.0 : update->dt;
+  if (model->history) model->history->begin();
+  const auto body_of = [&](int k, const ct::Pose &pose) {
+    return trimesh_contact_body(templ->type_template(type[k]),pose,v[k],omega[k],rmass[k],radius[k],
+                                rotation);
+  };
+  const auto edge = [&](int k) { return templ->type_template(type[k])->shape.minimumEdgeLength; };
   for (std::size_t kp = 0; kp < model->pairs.size(); kp++) {
     const std::vector<ct::ContactPoint> &contacts = model->search->contacts(kp);
     if (contacts.empty()) continue;
     const TrimeshCandidatePair &p = model->pairs[kp];
-    const int a = p.a, b = p.b;
-    const ct::Pose &pa = p.pose_a, &pb = p.pose_b;
-    const TrimeshTypeTemplate *ta = templ->type_template(type[a]), *tb = templ->type_template(type[b]);
-    dy::RigidBody ba = body(*ta,pa,v[a],omega[a],rmass[a],rotation);
-    dy::RigidBody bb = body(*tb,pb,v[b],omega[b],rmass[b],rotation);
-    const cm::ContactModel &law = model->models.at(type[a],type[b]);
-    // i is owned; j only where newton off lets this rank add to it
-    const bool a_owned = force->newton_pair || a < nlocal;
-    const bool b_owned = force->newton_pair || b < nlocal;
+    add_pair_forces(p.a,body_of(p.a,p.pose_a),p.b,body_of(p.b,p.pose_b),0,contacts,
+                    0.5 * std::min(edge(p.a),edge(p.b)),history_dt,NULL);
+  }
+  std::vector<ct::ContactPoint> &group = model->group_contacts;
+  for (std::size_t kp = 0; kp < model->sphere_pairs.size(); kp++) {
+    const std::size_t begin = model->sphere_offsets[kp], end = model->sphere_offsets[kp+1];
+    if (begin == end) continue;
+    const TrimeshCandidatePair &p = model->sphere_pairs[kp];
+    group.assign(model->sphere_contacts.begin() + begin,model->sphere_contacts.begin() + end);
+    add_pair_forces(p.a,body_of(p.a,p.pose_a),p.b,body_of(p.b,p.pose_b),0,group,0.5 * edge(p.a),
+                    history_dt,NULL);
+  }
 
-    double *slots = NULL;
-    int stride = 0;
-    if (history) {
-      const int owner = a_owned ? a : b, partner = a_owned ? tag[b] : tag[a];
-      int count = 0;
-      const double *previous = history->lookup(owner,partner,count);
-      matcher->setDistance(0.5 * std::min(ta->shape.minimumEdgeLength,tb->shape.minimumEdgeLength));
-      matcher->match(previous,std::size_t(count),contacts,pa,model->records);
-      slots = model->records.data() + cm::kContactAnchorDoubles;
-      stride = matcher->recordSize();
-    }
-
-    for (std::size_t kc = 0; kc < contacts.size(); kc++) {
-      const ct::ContactPoint &c = contacts[kc];
-      stat_max_penetration = std::max(stat_max_penetration,c.penetration);
-      const cm::Contact k = cm::makeContact(ba,bb,c.point,c.normal,c.penetration);
-      // on the first body; the second gets -fa (and -ta)
-      const cm::ContactForces out = law.evaluate(k,slots ? slots + kc*stride : NULL,history_dt);
-      const Eigen::Vector3d &fa = out.forceOnFirst;
-      if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
-      if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
-      if (rotation) {
-        if (a_owned) {
-          Eigen::Vector3d tq = (c.point - pa.position).cross(fa);
-          if (law.rolling()) tq += out.torqueOnFirst;
-          torque[a][0] += tq[0]; torque[a][1] += tq[1]; torque[a][2] += tq[2];
-        }
-        if (b_owned) {
-          Eigen::Vector3d tq = (c.point - pb.position).cross(-fa);
-          if (law.rolling()) tq -= out.torqueOnFirst;
-          torque[b][0] += tq[0]; torque[b][1] += tq[1]; torque[b][2] += tq[2];
-        }
-      }
-    }
-    if (history) {
-      const int n = int(contacts.size());
-      if (a_owned) history->store(a,tag[b],model->records.data(),n);
-      if (b_owned) history->store(b,tag[a],model->records.data(),n);
+  // Grains against walls (the grain first; a wall is a body of infinite mass moving with its
+  // surface velocity at the contact point), one grain-wall pair (consecutive contacts) at a time.
+  if (!model->walls->empty()) {
+    model->walls->find(model->wall_contacts,model->stats);
+    const std::vector<TrimeshWallContact> &wcs = model->wall_contacts;
+    std::vector<Eigen::Vector3d> &forces = model->group_forces;
+    for (std::size_t k = 0; k < wcs.size();) {
+      std::size_t e = k;
+      group.clear();
+      while (e < wcs.size() && wcs[e].atom == wcs[k].atom && wcs[e].wall_key == wcs[k].wall_key)
+        group.push_back(wcs[e++].contact);
+      const int a = wcs[k].atom;
+      ct::Pose pa;
+      pa.position = Eigen::Vector3d(x[a][0],x[a][1],x[a][2]);
+      pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
+      // the wall's velocity at the pair's first contact point (each point's own below)
+      forces.resize(group.size());
+      add_pair_forces(a,body_of(a,pa),-1,trimesh_wall_body(group[0].point,wcs[k].wall_velocity),
+                      wcs[k].wall_type,group,0.5 * edge(a),history_dt,forces.data(),&wcs[k]);
+      for (std::size_t c = k; c < e; c++) model->walls->report_to_mesh(wcs[c],forces[c-k]);
+      k = e;
     }
   }
-  if (history) history->finish();
+  if (model->history) model->history->finish();
+}
+
+/* The contacts of one body pair: a (first, owned or ghost) and b (second; b < 0: a wall of
+   material type wall_type, whose contacts wall[0..n) give each point's wall velocity and the
+   history key) by the law of their type pair, forces and torques to the atoms this rank owns
+   (newton off: a pair across two ranks is computed on both, in the same body order). With
+   history, the pair's records are read from an owned atom (keyed by the partner's tag, a wall's
+   key for a wall), matched to these contacts within match_distance, advanced by dt and stored
+   on every owned atom of the pair. force_on_a (if given): the force on a of each contact. */
+
+void PairTrimesh::add_pair_forces(int a, const dy::RigidBody &ba, int b, const dy::RigidBody &bb,
+                                  int wall_type, const std::vector<ct::ContactPoint> &contacts,
+                                  double match_distance, double dt, Eigen::Vector3d *force_on_a,
+                                  const TrimeshWallContact *wall)
+{
+  double **f = atom->f, **torque = atom->torque;
+  const int *type = atom->type, *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const bool a_owned = force->newton_pair || a < nlocal;
+  const bool b_owned = b >= 0 && (force->newton_pair || b < nlocal);
+  if (!a_owned && !b_owned) return;
+  const int partner_of_a = b >= 0 ? tag[b] : wall->wall_key;
+  const cm::ContactModel &law = model->models.at(type[a],b >= 0 ? type[b] : wall_type);
+
+  double *slots = NULL;
+  int stride = 0;
+  FixTrimeshContactHistory *history = model->history;
+  if (history) {
+    const int owner = a_owned ? a : b, partner = a_owned ? partner_of_a : tag[a];
+    int count = 0;
+    const double *previous = history->lookup(owner,partner,count);
+    ct::Pose pa;
+    pa.position = ba.position;
+    pa.orientation = ba.orientation;
+    model->matcher->setDistance(match_distance);
+    model->matcher->match(previous,std::size_t(count),contacts,pa,model->records);
+    slots = model->records.data() + cm::kContactAnchorDoubles;
+    stride = model->matcher->recordSize();
+  }
+
+  dy::RigidBody wall_body = bb;
+  for (std::size_t kc = 0; kc < contacts.size(); kc++) {
+    const ct::ContactPoint &c = contacts[kc];
+    if (wall) wall_body = trimesh_wall_body(c.point,wall[kc].wall_velocity);
+    stat_max_penetration = std::max(stat_max_penetration,c.penetration);
+    const cm::Contact k = cm::makeContact(ba,wall ? wall_body : bb,c.point,c.normal,c.penetration);
+    // on the first body; the second gets -fa (and -ta)
+    const cm::ContactForces out = law.evaluate(k,slots ? slots + kc*stride : NULL,dt);
+    const Eigen::Vector3d &fa = out.forceOnFirst;
+    if (force_on_a) force_on_a[kc] = fa;
+    if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
+    if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
+    if (model->rotation) {
+      if (a_owned) {
+        Eigen::Vector3d tq = (c.point - ba.position).cross(fa);
+        if (law.rolling()) tq += out.torqueOnFirst;
+        torque[a][0] += tq[0]; torque[a][1] += tq[1]; torque[a][2] += tq[2];
+      }
+      if (b_owned) {
+        Eigen::Vector3d tq = (c.point - bb.position).cross(-fa);
+        if (law.rolling()) tq -= out.torqueOnFirst;
+        torque[b][0] += tq[0]; torque[b][1] += tq[1]; torque[b][2] += tq[2];
+      }
+    }
+  }
+  if (history) {
+    const int n = int(contacts.size());
+    if (a_owned) history->store(a,partner_of_a,model->records.data(),n);
+    if (b_owned) history->store(b,tag[a],model->records.data(),n);
+  }
 }

@@ -18,7 +18,13 @@
    history) keep it in fix trimesh_contact_history, per particle pair on the owned atoms
    (fix_trimesh_contact_history.h), matched step to step by the core's ContactHistoryMatcher.
    Torques and angular velocities only with `rotation yes` (default). Obstacles (fixed template
-   types) have infinite mass. Statistics: compute trimesh/contacts. */
+   types) have infinite mass and move with their atom's velocity and angular velocity (fix
+   move/trimesh). Types without template are spheres (core radius r - E plus the halo): against
+   grains and obstacles here, exact sphere-triangle contacts (core SphereMeshContact); sphere
+   pairs belong to pair gran (pair_style hybrid). Grains against fix wall/gran walls by their
+   surfaces: trimesh_wall_contacts.h (history keyed by the wall). Every contact kind goes through
+   the one law of its type pair and the same history (add_pair_forces). Statistics: compute
+   trimesh/contacts. */
 
 #ifdef PAIR_CLASS
 
@@ -34,12 +40,14 @@ PairStyle(trimesh,PairTrimesh)
 #include <vector>
 
 #include "contact/MeshContact.h"
+#include "dynamics/RigidBody.h"
 #include "pair.h"
 
 namespace LAMMPS_NS {
 
 struct PairTrimeshModel;
 struct TrimeshCandidatePair;
+struct TrimeshWallContact;
 
 class PairTrimesh : public Pair {
  public:
@@ -58,7 +66,6 @@ class PairTrimesh : public Pair {
   // Of the last compute, summed over ranks: contacts, body pairs tested, triangle pairs
   // checked, hybrid fallbacks; and the largest penetration (halo overlap eps - d/2, <= eps).
   void contact_statistics(double out[5]);
-
   // The last compute's body pairs that passed the bounding-sphere precheck (local atom indices
   // in the canonical body order, shapes, poses) with their contact points (world frame), and the
   // contact search's options (halo, distance method): what fix adapt/timestep reads for its veto,
@@ -72,6 +79,13 @@ class PairTrimesh : public Pair {
  private:
   void allocate();
   void setup_history();
+  // The contacts of body pair (a, b) (b < 0: a wall; wall: its contacts) by the law of their
+  // type pair, with history; pair_trimesh.cpp.
+  void add_pair_forces(int a, const spacetree::dynamics::RigidBody &ba, int b,
+                       const spacetree::dynamics::RigidBody &bb, int wall_type,
+                       const std::vector<spacetree::contact::ContactPoint> &contacts,
+                       double match_distance, double dt, Eigen::Vector3d *force_on_a,
+                       const TrimeshWallContact *wall = NULL);
 
   std::unique_ptr<PairTrimeshModel> model;
   class FixTrimeshTemplate *templ;

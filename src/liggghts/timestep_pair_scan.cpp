@@ -190,6 +190,7 @@ void TimestepPairScan::scan_primitive_wall(FixWallGran *wall)
   const bool moving = wall->is_moving();
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & owner_->groupbit)) continue;
+    if (wall->excludes_type(atom->type[i])) continue;   // grains: pair_style trimesh's contacts
     double delta[3];
     const double gap = pw->resolveContact(atom->x[i],atom->radius[i],delta);
     wall_contact(i,gap,delta,moving);
@@ -215,6 +216,7 @@ void TimestepPairScan::scan_mesh_wall(FixWallGran *wall)
       const std::vector<int> &candidates = nl->get_contact_list(t);
       for (const int i : candidates) {
         if (i >= nlocal || !(atom->mask[i] & owner_->groupbit)) continue;
+        if (wall->excludes_type(atom->type[i])) continue;   // grains: pair_style trimesh's
         double delta[3];
         int barysign;
         const double gap = mesh->resolveTriSphereContact(i,t,atom->radius[i],atom->x[i],delta,barysign);

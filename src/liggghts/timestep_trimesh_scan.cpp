@@ -36,8 +36,9 @@ TimestepTrimeshScan::TimestepTrimeshScan(LAMMPS *lmp, PairTrimesh *pair) :
 
 bool TimestepTrimeshScan::moving(int i) const
 {
-  const TrimeshTypeTemplate *t = templ_->type_template(atom->type[i]);
-  return t && !t->fixed;
+  // grains and obstacles: a static obstacle has v = omega = 0 (fix trimesh/template), one that
+  // fix move/trimesh moves has its prescribed velocities, as in the contact law
+  return templ_->type_template(atom->type[i]) != NULL;
 }
 
 double TimestepTrimeshScan::normal_velocity(int a, int b, const double *point, const double *normal) const
@@ -126,11 +127,9 @@ void TimestepTrimeshScan::scan_near_pairs(NeighList *list, const Settings &s, bo
       if (!tj || (ti->fixed && tj->fixed)) continue;
       if (in_contact_.count(pair_key(i,j))) continue;
       const Eigen::Vector3d xi(x[i][0],x[i][1],x[i][2]), xj(x[j][0],x[j][1],x[j][2]);
-      const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-      const Eigen::Vector3d vi = ti->fixed ? zero : Eigen::Vector3d(v[i][0],v[i][1],v[i][2]);
-      const Eigen::Vector3d vj = tj->fixed ? zero : Eigen::Vector3d(v[j][0],v[j][1],v[j][2]);
-      const Eigen::Vector3d wi = ti->fixed ? zero : Eigen::Vector3d(omega[i][0],omega[i][1],omega[i][2]);
-      const Eigen::Vector3d wj = tj->fixed ? zero : Eigen::Vector3d(omega[j][0],omega[j][1],omega[j][2]);
+      // (obstacles too: moved by fix move/trimesh, at rest otherwise)
+      const Eigen::Vector3d vi(v[i][0],v[i][1],v[i][2]), vj(v[j][0],v[j][1],v[j][2]);
+      const Eigen::Vector3d wi(omega[i][0],omega[i][1],omega[i][2]), wj(omega[j][0],omega[j][1],omega[j][2]);
       const double w = ct::surfaceClosingSpeedBound(vi,wi,ti->boundingRadius,vj,wj,tj->boundingRadius);
       if (!(w > 0.0)) continue;
       const double reach = w*s.dtTest;

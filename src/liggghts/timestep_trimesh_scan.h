@@ -65,7 +65,8 @@ class TimestepTrimeshScan : protected Pointers {
                        spacetree::TimestepVeto *veto, Tally &t);
   // (v_b + w_b x (p - x_b)) - (v_a + w_a x (p - x_a)) along n: < 0 while the points approach
   double normal_velocity(int a, int b, const double *point, const double *normal) const;
-  // velocity and angular velocity of atom i as the contact law sees it (obstacles at rest)
+  // atom i's velocity and angular velocity enter the closing speed (template types: grains and
+  // obstacles, static or moved by fix move/trimesh, as the contact law sees them)
   bool moving(int i) const;
 
   class PairTrimesh *pair_;

@@ -68,15 +68,17 @@ double TrimeshContactCoefficients::per_pair(const char *name, int i, int j, cons
 
 cm::ContactParameters TrimeshContactCoefficients::parameters(int i, int j,
                                                              const TrimeshContactSettings &s,
-                                                             FixTrimeshTemplate *templ)
+                                                             FixTrimeshTemplate *templ,
+                                                             const std::vector<double> &sphere_radius)
 {
   const cm::ContactModelSpec &spec = s.spec;
-  const TrimeshTypeTemplate *ti = templ->type_template(i), *tj = templ->type_template(j);
-  // volume-equivalent radii (a fixed obstacle: infinite)
-  const auto radius = [](const TrimeshTypeTemplate *t) {
-    return t->fixed ? kInf : std::cbrt(3.0 * t->shape.volume / (4.0 * M_PI));
+  // volume-equivalent radii (a fixed obstacle or a wall: infinite; a sphere: its radius)
+  const auto radius = [&](int t) {
+    const TrimeshTypeTemplate *tt = templ->type_template(t);
+    if (!tt) return sphere_radius[t] > 0.0 ? sphere_radius[t] : kInf;
+    return tt->fixed ? kInf : std::cbrt(3.0 * tt->shape.volume / (4.0 * M_PI));
   };
-  const double rstar = cm::effectiveRadius(radius(ti),radius(tj));
+  const double rstar = cm::effectiveRadius(radius(i),radius(j));
   const std::string where = pair_name(i,j);
   const auto check = [&](const char *property, double v, bool ok, const char *range) {
     if (!ok || !std::isfinite(v)) {
@@ -147,15 +149,17 @@ cm::ContactParameters TrimeshContactCoefficients::parameters(int i, int j,
 }
 
 cm::ContactModelTable TrimeshContactCoefficients::build(const TrimeshContactSettings &s,
-                                                       FixTrimeshTemplate *templ)
+                                                       FixTrimeshTemplate *templ,
+                                                       const std::vector<double> &sphere_radius)
 {
   const int n = atom->ntypes;
   const auto active = [templ](int i, int j) {
     const TrimeshTypeTemplate *ti = templ->type_template(i), *tj = templ->type_template(j);
-    return ti && tj && !(ti->fixed && tj->fixed);
+    return (ti || tj) && !(ti && tj && ti->fixed && tj->fixed);
   };
   try {
-    return cm::ContactModelTable(n,s.spec,[&](int i, int j) { return parameters(i,j,s,templ); },active);
+    return cm::ContactModelTable(n,s.spec,[&](int i, int j) { return parameters(i,j,s,templ,sphere_radius); },
+                                 active);
   } catch (const std::exception &e) {
     error->all(FLERR,(std::string("Pair style trimesh: ") + e.what()).c_str());
   }
@@ -172,6 +176,17 @@ void TrimeshContactCoefficients::report(const cm::ContactModelTable &table,
       if (!table.has(i,j)) continue;
       const cm::ContactModel &m = table.at(i,j);
       const TrimeshTypeTemplate *ti = templ->type_template(i), *tj = templ->type_template(j);
+      if (!ti || !tj) {
+        // a sphere or a wall type: its mass is not the type's, the coefficients only
+        const double S = m.normal().stiffness();
+        const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
+        char line[300];
+        snprintf(line,sizeof(line),"  type pair %d %d (%s): stiffness %.4g N/m, damping %.4g sqrt(kg)/s, "
+                 "tangential stiffness %.4g N/m\n",i,j,"with spheres or a wall's material",S,D,
+                 m.tangential() ? m.tangential()->stiffness() : 0.0);
+        text += line;
+        continue;
+      }
       const double inv_m = (ti->fixed ? 0.0 : 1.0 / ti->mass) + (tj->fixed ? 0.0 : 1.0 / tj->mass);
       // tangential: translation plus rotation about the smallest moment, lever = bounding radius
       const auto inv_t = [](const TrimeshTypeTemplate *t) {

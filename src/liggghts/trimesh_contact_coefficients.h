@@ -11,6 +11,7 @@
 #define LMP_TRIMESH_CONTACT_COEFFICIENTS_H
 
 #include <limits>
+#include <vector>
 
 #include "contact_model/ContactModel.h"
 #include "pointers.h"
@@ -31,19 +32,25 @@ struct TrimeshContactSettings {
 class TrimeshContactCoefficients : protected Pointers {
  public:
   explicit TrimeshContactCoefficients(class LAMMPS *lmp) : Pointers(lmp) {}
-  // One model per type pair that can touch (both types with a template, not both fixed);
-  // error->all naming the keyword or material property and the type pair otherwise.
+  // One model per type pair that can touch: grains and obstacles (template types, not both
+  // fixed), and a template type with a type without template (spheres, or the material type of
+  // a fix wall/gran wall); error->all naming the keyword or material property and the type pair
+  // otherwise. sphere_radius[t] (t without template): the largest radius of its atoms (its
+  // characteristic radius), 0 for none (a wall's material: a plane, infinite radius).
   spacetree::contact_model::ContactModelTable build(const TrimeshContactSettings &settings,
-                                                   class FixTrimeshTemplate *templ);
+                                                   class FixTrimeshTemplate *templ,
+                                                   const std::vector<double> &sphere_radius);
   // Rank 0 prints, per type pair: S, D, restitution, friction, k_t, contact time, largest stable
-  // time step; warns when the time step exceeds it.
+  // time step (pairs of grains and obstacles; with a sphere or wall type, the coefficients);
+  // warns when the time step exceeds the smallest.
   void report(const spacetree::contact_model::ContactModelTable &table,
               const TrimeshContactSettings &settings, class FixTrimeshTemplate *templ);
 
  private:
   spacetree::contact_model::ContactParameters parameters(int i, int j,
                                                          const TrimeshContactSettings &settings,
-                                                         class FixTrimeshTemplate *templ);
+                                                         class FixTrimeshTemplate *templ,
+                                                         const std::vector<double> &sphere_radius);
   class FixPropertyGlobal *material(const char *name, bool pair, const char *why);
   double per_type(const char *name, int t, const char *why);
   double per_pair(const char *name, int i, int j, const char *why);

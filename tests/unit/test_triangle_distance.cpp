@@ -23,6 +23,7 @@
 
 #include "geometry/HybridTriangleDistance.h"
 #include "geometry/PenaltyTriangleDistance.h"
+#include "geometry/PointTriangleDistance.h"
 #include "geometry/SphereMesh.h"
 #include "geometry/TriangleDistance.h"
 #include "geometry/TrianglePairSources.h"
@@ -797,6 +798,51 @@ TEST(PenaltyTriangleDistance, BoundsHoldAndErrorDistributionIsReported) {
 
 // 10^6 random pairs (about 5 s): FCL for all, CGAL for every 100th pair and wherever FCL and the
 // method differ; contact decisions of the hybrid at the 10 % distance quantile.
+// Closest point of a triangle to a point (the sphere-triangle contacts): its distance equals
+// CGAL's rigorous point-triangle distance, it lies on the triangle, and its feature says where
+// (a vertex feature is that vertex, an edge feature lies on that edge). Random triangles,
+// points near them, and degenerate triangles (collinear, repeated vertices).
+TEST(PointTriangleDistance, ClosestPointAgreesWithCgal) {
+  using spacetree::geometry::TriangleFeature;
+  namespace geometry = spacetree::geometry;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto point = [&] { return Vector3d(u(rng), u(rng), u(rng)); };
+  double maxError = 0.0, maxOff = 0.0;
+  int features[7] = {};
+  for (int k = 0; k < 10000; ++k) {
+    Triangle t{point(), point(), point()};
+    if (k % 50 == 0) t[2] = t[0] + 0.37 * (t[1] - t[0]);  // collinear
+    if (k % 50 == 1) t[2] = t[1];                          // repeated vertex
+    const Vector3d p = k % 3 == 0 ? Vector3d(point() * 3.0) : Vector3d(point() * 0.3 + t[k % 3]);
+    const geometry::PointTriangleClosest r = geometry::closestPointOnTriangle(p, t);
+    const Vector3d q = p - r.offset;
+    const double h = t.longestEdge();
+    const double reference = cgalPointTriangleDistance(p, t);
+    const double err = std::abs(r.offset.norm() - reference) / std::max(reference, h);
+    maxError = std::max(maxError, err);
+    maxOff = std::max(maxOff, cgalPointTriangleDistance(q, t) / h);
+    ++features[int(r.feature)];
+    const int f = int(r.feature);
+    if (f <= 2) {
+      EXPECT_LT((q - t[f]).norm(), 1e-14 * h) << k;
+    } else if (f <= 5) {
+      const Vector3d& a = t[f - 3];
+      const Vector3d& b = t[(f - 2) % 3];
+      const Vector3d e = b - a;
+      EXPECT_LT(e.cross(q - a).norm(), 1e-12 * h * h) << k;  // on the edge's line
+    }
+  }
+  EXPECT_LT(maxError, 1e-13);
+  EXPECT_LT(maxOff, 1e-13);
+  for (int f = 0; f < 7; ++f) EXPECT_GT(features[f], 100) << "feature " << f;
+  // The squared distance (the culls' form) is the same number.
+  const Triangle t{Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)};
+  EXPECT_EQ(geometry::pointTriangleSquaredDistance(Vector3d(0.2, 0.3, 0.5), t), 0.25);
+  EXPECT_EQ(geometry::closestPointOnTriangle(Vector3d(2, 2, 0), t).feature, TriangleFeature::Edge12);
+  EXPECT_EQ(geometry::closestPointOnTriangle(Vector3d(-1, 0.5, 0), t).feature, TriangleFeature::Edge20);
+}
+
 TEST(TriangleDistanceMethods, MillionRandomPairsAgreeWithOracle) {
   const std::vector<TrianglePair> pairs = makePairs(randomPair, 1000000, 77);
   const std::vector<TriangleDistanceResult> exact = exactDistances(pairs);

@@ -159,43 +159,6 @@ bool clearOfPoint(const Vector3d& p, const Triangle& t, double r, double reach) 
   return geometry::pointTriangleSquaredDistance(p, t) > limit * limit;
 }
 
-double distanceToSegment(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
-  const Vector3d e = b - a;
-  const double ee = e.squaredNorm();
-  const double s = ee > 0.0 ? std::clamp((p - a).dot(e) / ee, 0.0, 1.0) : 0.0;
-  return (p - (a + s * e)).norm();
-}
-
-// Whether moving the closest point p of triangle t of `shape` onto a neighbouring triangle can
-// shorten the distance along direction u (unit, from p towards the other body): if p lies on
-// an edge (vertex) of t and some neighbour vertex w across that edge (around that vertex) has
-// u . (w - p) > kFeatureTolerance |w - p|, the pair's closest points are not a local minimum of
-// the surface distance, and a neighbouring triangle pair is strictly closer. The points of the
-// shape are mapped by x -> rotation * x + shift.
-bool isLocalMinimum(const geometry::RigidShape& shape, int t, const Vector3d& p, const Vector3d& u,
-                    const Matrix3d& rotation, const Vector3d& shift, double tolerance) {
-  const auto& f = shape.bodyMesh.triangles[std::size_t(t)];
-  const auto world = [&](int v) { return Vector3d(rotation * shape.bodyMesh.vertices[std::size_t(v)] + shift); };
-  const auto descends = [&](int w) {
-    const Vector3d step = world(w) - p;
-    return u.dot(step) > kFeatureTolerance * step.norm();
-  };
-  const Vector3d corner[3] = {world(f[0]), world(f[1]), world(f[2])};
-  for (int k = 0; k < 3; ++k)
-    if ((p - corner[k]).norm() <= tolerance) {
-      for (int n = shape.vertexNeighbourOffsets[std::size_t(f[k])];
-           n < shape.vertexNeighbourOffsets[std::size_t(f[k]) + 1]; ++n)
-        if (descends(shape.vertexNeighbours[std::size_t(n)])) return false;
-      return true;
-    }
-  for (int k = 0; k < 3; ++k)
-    if (distanceToSegment(p, corner[k], corner[(k + 1) % 3]) <= tolerance) {
-      const int apex = shape.edgeApex[std::size_t(t)][k];
-      return apex < 0 || !descends(apex);
-    }
-  return true;  // inside the face: u is its normal
-}
-
 // Calls body(i) for the given candidate triangles of `shape`, or for all of them (nullptr).
 template <class Body>
 void forEachTriangle(const geometry::RigidShape& shape, const std::vector<int>* candidates,
@@ -244,7 +207,7 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
     pairNearTriangles(first, second, frame, counts);
     computeDistances(frame.contactDistance, counts);
     collectRawContacts(first, second, frame, counts);
-    mergeDuplicates(first, second, contacts, begin);
+    mergeDuplicates(first, second, contacts);
     // To the world frame.
     for (std::size_t k = begin; k < contacts.size(); ++k) {
       contacts[k].point = frame.firstRotation * contacts[k].point + firstPose.position;
@@ -469,45 +432,13 @@ void MeshContactFinder::collectRawContacts(const geometry::RigidShape& first,
   counts.rawContacts = raw_.size();
 }
 
-// Penetration-weighted running means of close contacts with close normals.
+// Penetration-weighted running means of close contacts with close normals (ContactMerging.h).
 void MeshContactFinder::mergeDuplicates(const geometry::RigidShape& first,
                                         const geometry::RigidShape& second,
-                                        std::vector<ContactPoint>& contacts, std::size_t begin) {
-  const double eps = options_.epsilon;
-  const double mergeDistance = 0.5 * std::min(first.minimumEdgeLength, second.minimumEdgeLength);
-  std::vector<Vector3d>& normalSums = normalSums_;  // weighted sums of merged unit normals
-  std::vector<double>& weights = weights_;          // sums of merged penetrations
-  normalSums.clear();
-  weights.clear();
-  for (const ContactPoint& c : raw_) {
-    bool merged = false;
-    if (options_.deduplicate)
-      for (std::size_t k = begin; k < contacts.size(); ++k) {
-        ContactPoint& m = contacts[k];
-        if ((c.point - m.point).squaredNorm() < mergeDistance * mergeDistance &&
-            c.normal.dot(m.normal) >= options_.mergeNormalCosine) {
-          double& w = weights[k - begin];
-          const double wc = c.penetration;  // > 0 for every contact (d < 2 eps)
-          const double total = w + wc;
-          const double old = total > 0.0 ? w / total : 0.5, added = 1.0 - old;
-          m.point = old * m.point + added * c.point;
-          m.penetration = old * m.penetration + added * c.penetration;
-          m.distance = 2.0 * (eps - m.penetration);
-          Vector3d& sum = normalSums[k - begin];
-          sum += wc * c.normal;
-          if (sum.squaredNorm() > 0.0) m.normal = sum.normalized();
-          w = total;
-          ++m.mergedCount;
-          merged = true;
-          break;
-        }
-      }
-    if (!merged) {
-      contacts.push_back(c);
-      normalSums.push_back(c.penetration * c.normal);
-      weights.push_back(c.penetration);
-    }
-  }
+                                        std::vector<ContactPoint>& contacts) {
+  // half the shortest edge: the vertex contacts of a face resting on a face (4b) stay apart
+  merger_.merge(raw_, 0.5 * std::min(first.minimumEdgeLength, second.minimumEdgeLength), options_,
+                contacts);
 }
 
 // Step (4b): the vertices of either triangle of a pair in contact that lie over the other's face

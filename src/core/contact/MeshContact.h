@@ -79,6 +79,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/ContactMerging.h"
 #include "geometry/HybridTriangleDistance.h"
 #include "geometry/RigidShape.h"
 #include "geometry/TriangleDistance.h"
@@ -223,9 +224,9 @@ class MeshContactFinder {
                           const PairFrame& frame, MeshContactStatistics& counts);
   // (4b) for pair p: its vertex contacts -> raw_.
   void addVertexContacts(std::size_t pair);
-  // (6): raw_ merged into the contacts appended to `contacts` from index begin on.
+  // (6): raw_ merged into the contacts it appends to `contacts` (ContactMerger).
   void mergeDuplicates(const geometry::RigidShape& first, const geometry::RigidShape& second,
-                       std::vector<ContactPoint>& contacts, std::size_t begin);
+                       std::vector<ContactPoint>& contacts);
 
   MeshContactOptions options_;
   std::vector<int> nearFirst_, nearSecond_, candidates_;
@@ -235,8 +236,7 @@ class MeshContactFinder {
   std::vector<std::array<int, 2>> pairIndex_;
   std::vector<geometry::TriangleDistanceResult> results_;
   std::vector<ContactPoint> raw_;
-  std::vector<Eigen::Vector3d> normalSums_;
-  std::vector<double> weights_;
+  ContactMerger merger_;
 };
 
 // Whether the bounding spheres come within 2 epsilon (the first precheck).

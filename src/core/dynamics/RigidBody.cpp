@@ -41,6 +41,7 @@ Eigen::Vector3d RigidBody::principalInertia() const {
 }
 
 Eigen::Vector3d RigidBody::angularVelocity() const {
+  if (isFixed()) return prescribedAngularVelocity;
   const Eigen::Vector3d bodyMomentum = orientation.conjugate() * angularMomentum;
   return orientation * inverseInertia.cwiseProduct(bodyMomentum);
 }

@@ -2,8 +2,8 @@
 // quaternion body -> world), linear velocity, and angular momentum in the world frame with a
 // diagonal (principal-axes) inertia tensor in the body frame (geometry::RigidShape gives the
 // principal moments). A body of infinite mass (inverseMass = 0, inverseInertia = 0) is a fixed
-// obstacle: forces and torques do not move it (it may still translate with a prescribed
-// velocity).
+// obstacle: forces and torques do not move it (it may still move with a prescribed velocity
+// and angular velocity: a moving obstacle, PrescribedMotion.h).
 //
 // Time stepping is split so that callers compose their integrator (e.g. symplectic Euler
 // kick(F, tau, dt) then drift(dt), or velocity Verlet kick(dt/2) drift(dt) kick(dt/2)):
@@ -34,6 +34,8 @@ struct RigidBody {
   Eigen::Vector3d angularMomentum = Eigen::Vector3d::Zero();  // world frame, about the c.o.m.
   double inverseMass = 0.0;                              // 0: infinite mass
   Eigen::Vector3d inverseInertia = Eigen::Vector3d::Zero();  // 1 / principal moments (body)
+  // Angular velocity (world frame) of a body of infinite mass, prescribed rather than from L.
+  Eigen::Vector3d prescribedAngularVelocity = Eigen::Vector3d::Zero();
 
   // A free body of the given mass and principal moments (both > 0; std::invalid_argument
   // otherwise), at rest.
@@ -52,7 +54,7 @@ struct RigidBody {
   Eigen::Vector3d toWorld(const Eigen::Vector3d& bodyPoint) const {
     return orientation * bodyPoint + position;
   }
-  // omega = R diag(1/I) R^T L (world frame).
+  // omega = R diag(1/I) R^T L (world frame); prescribedAngularVelocity for a fixed body.
   Eigen::Vector3d angularVelocity() const;
   // Inverse inertia tensor in the world frame: R diag(1/I) R^T.
   Eigen::Matrix3d inverseInertiaWorld() const;

@@ -31,8 +31,8 @@ struct RigidShape {
   // in O(log n + k) (TriangleBvh.h).
   TriangleBvh triangleIndex;
 
-  // Adjacency (closed manifold mesh): edgeApex[t][k] is the vertex opposite edge
-  // (v_k, v_{k+1}) of triangle t in the neighbouring triangle across that edge (-1 if none);
+  // Adjacency: edgeApex[t][k] is the vertex opposite edge (v_k, v_{k+1}) of triangle t in the
+  // neighbouring triangle across that edge (-1 if none: a boundary or non-manifold edge);
   // the neighbours of vertex v are vertexNeighbours[vertexNeighbourOffsets[v] ..
   // vertexNeighbourOffsets[v + 1]). Used by the contact search to drop triangle-pair contacts
   // that are not local minima of the surface distance (MeshContact.h).
@@ -69,6 +69,12 @@ struct RigidShape {
   // From a closed, outward-oriented mesh (run validateMesh() first); throws
   // std::invalid_argument when the mesh encloses no positive volume.
   static RigidShape fromMesh(const TriangleMesh& mesh);
+  // A surface without mass (a wall: open, any orientation, shared vertices by index): body
+  // frame = mesh axes with the origin at the centre of the mesh's bounding box
+  // (centreOfMassInMesh, meshRotation identity); volume and inertia 0; an edge that is not
+  // shared by exactly two triangles has no neighbour (edgeApex -1). Throws
+  // std::invalid_argument for a mesh without triangles.
+  static RigidShape fromSurface(const TriangleMesh& mesh);
 };
 
 }  // namespace spacetree::geometry

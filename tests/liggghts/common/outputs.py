@@ -36,6 +36,26 @@ def parse_local_dump(path):
     return steps
 
 
+def parse_dump_rows(path):
+    """dump custom, any columns (the first the atom ID) -> list of (step, dict id -> row of
+    floats, the ID included), in file order."""
+    frames = []
+    with open(path) as f:
+        lines = f.read().split("\n")
+    i, n = 0, len(lines)
+    while i < n:
+        if lines[i].startswith("ITEM: TIMESTEP"):
+            step, count = int(lines[i + 1]), int(lines[i + 3])
+            while not lines[i].startswith("ITEM: ATOMS"):
+                i += 1
+            rows = [[float(t) for t in l.split()] for l in lines[i + 1:i + 1 + count]]
+            frames.append((step, {int(r[0]): r for r in rows}))
+            i += 1 + count
+        else:
+            i += 1
+    return frames
+
+
 def parse_atoms_dump(path):
     """dump custom (id radius x y z) -> dict step -> dict id -> (r, x, y, z), and box per step."""
     steps, boxes = {}, {}

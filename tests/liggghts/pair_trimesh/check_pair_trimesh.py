@@ -86,7 +86,7 @@ def write_incline_meshes(wd):
 
 
 def incline(R, tag, tantheta, seconds, np, tangential="history", extra="rotation yes", push=0.0,
-            ramp=0.0, cube="cube.stl"):
+            ramp=0.0, cube="cube.stl", floor="obstacle"):
     """Runs in.incline (the push grows over `ramp` s); returns the thermo columns and the log."""
     mass = DENSITY * EDGE ** 3
     rest = mass * G * math.cos(math.atan(tantheta)) / (4 * cube_on_floor_stiffness())
@@ -95,7 +95,7 @@ def incline(R, tag, tantheta, seconds, np, tangential="history", extra="rotation
     _, text = R.run("in.incline", tag, np, dict(
         tangential=tangential, tantheta=tantheta, mu=MU, n=int(round(seconds / dt)), dt=dt,
         z0=EDGE / 2 + 2 * (EPS - rest), push=push, ramp=max(1, int(round(ramp / dt))), extra=extra,
-        cube=cube, cols=cols,
+        cube=cube, cols=cols, floor=floor, here=R.deckdir,
         every=1000, procs="2 1 1" if np == 2 else "1 1 1"))
     return thermo(text), text
 
@@ -128,6 +128,25 @@ def case_incline(R, np):
     moved_v = abs(creep["xg"][-1] - creep["xg"][0])
     check(moved_v > 1e-3 * EDGE, "incline: the viscous model (no static friction) creeps %.3g edge in 1 s "
           "(> 1e-3: the hold test can fail)" % (moved_v / EDGE))
+
+
+def case_incline_walls(R, np):
+    """The hold and slide of case_incline on fix wall/gran floors: an STL mesh wall and a
+    primitive zplane (grain-wall contacts keep their tangential history like grain pairs)."""
+    write_incline_meshes(R.work)
+    theta = math.atan(1.1 * MU)
+    expected = G * (math.sin(theta) - MU * math.cos(theta))
+    for floor in ("mesh", "primitive"):
+        hold, _ = incline(R, "hold_" + floor, 0.9 * MU, 1.0, np, floor=floor)
+        moved = abs(hold["xg"][-1] - hold["xg"][0])
+        check(moved < 1e-3 * EDGE, "incline on a %s wall: tan theta = 0.9 mu, tangential history: moves "
+              "%.3g m = %.3g edge in 1 s (< 1e-3)" % (floor, moved, moved / EDGE))
+        check(min(hold["hn"][1:]) >= 3, "incline on a %s wall: >= 3 contact points with history (%d..%d)"
+              % (floor, min(hold["hn"][1:]), max(hold["hn"])))
+        slide, _ = incline(R, "slide_" + floor, 1.1 * MU, 0.3, np, floor=floor)
+        a = slope(slide["Time"], slide["vx"], 0.1)
+        check(abs(a / expected - 1) < 0.02, "incline on a %s wall: tan theta = 1.1 mu slides with a = %.5f "
+              "m/s^2, g (sin - mu cos) = %.5f (%.2f %%)" % (floor, a, expected, 100 * (a / expected - 1)))
 
 
 def case_spring(R, np):
@@ -391,6 +410,7 @@ def dispatch(R, parts):
     name = parts[0]
     np = int(parts[1]) if len(parts) > 1 else 1
     cases = {"incline": lambda: case_incline(R, np), "spring": lambda: case_spring(R, np),
+             "incline_walls": lambda: case_incline_walls(R, np),
              "restitution": lambda: case_restitution(R, np), "cohesion": lambda: case_cohesion(R, np),
              "history_ranks": lambda: case_history_ranks(R),
              "history_restart": lambda: case_history_restart(R, np),

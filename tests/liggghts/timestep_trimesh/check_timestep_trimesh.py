@@ -15,6 +15,8 @@ nothing; the pour: inputs/pour/in.pour):
             overlap 9 mm before the surfaces meet), `creep 1.1 eps 5e-5`, dtmax tc/4, no contact ceiling: the
             veto fires only once the surface gap is within a step's reach, never hits dtmin, and
             keeps the halo penetration within eps
+  veto_moving  the same with the cube an obstacle driven at 4 m/s into the rod at rest by fix
+            move/trimesh: the veto sees the obstacle's prescribed velocity
   rollback  undamped cubes at 2 m/s, veto off, rollback on, a coarse step: the step entering the
             halo beyond penetration*eps is redone; the bystander's orientation and position equal
             the closed form for the booked time (a rejected step restores the
@@ -52,8 +54,9 @@ def check(cond, what):
     OK = OK and bool(cond)
 
 
-def rotated_cube(path, edge, corner_on_x):
-    """Closed outward box of edge `edge`; with corner_on_x its body diagonal (1,1,1) along x."""
+def rotated_cube(path, edge, corner_on_x, shift=0.0):
+    """Closed outward box of edge `edge`; with corner_on_x its body diagonal (1,1,1) along x;
+    centred at (shift, 0, 0)."""
     h = edge / 2
     tris = np.array(slab((-h, -h, -h), (h, h, h), edge), dtype=float)
     if corner_on_x:
@@ -61,7 +64,7 @@ def rotated_cube(path, edge, corner_on_x):
         v, c = np.cross(a, b), float(np.dot(a, b))
         k = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
         tris = tris @ (np.eye(3) + k + k @ k / (1.0 + c)).T
-    write_stl(path, tris)
+    write_stl(path, tris + np.array([shift, 0.0, 0.0]))
 
 
 def run(a, deck, name, vars_, procs=1, expect_fail=False, timeout=600):
@@ -169,20 +172,29 @@ def case_collide(a, procs):
                   "2 ranks (contact on the rank boundary): the 1-rank run's final v_rel to %.1e" % diff)
 
 
-def case_veto(a, procs):
+def case_veto(a, procs, moving=False):
+    """moving: the cube is an obstacle that fix move/trimesh drives at v into the rod at rest
+    (the same relative motion; the veto must see the obstacle's prescribed velocity)."""
     write_stl(os.path.join(a.workdir, "rod.stl"), slab((-0.001, -0.01, -0.001), (0.001, 0.01, 0.001), 0.001))
     rotated_cube(os.path.join(a.workdir, "cube_diag.stl"), 0.01, True)
     rotated_cube(os.path.join(a.workdir, "cube.stl"), 0.006, False)
     grid = "2 1 1" if procs > 1 else "* * *"
     P, v, dtmax = 5e-5, 4.0, 2e-5
-    adapt = "fix dtv all adapt/timestep creep 1.1 eps %g veto yes file dt_veto_%d.txt" % (P, procs)
-    rc, _, log = run(a, DECK, "veto_%d" % procs, dict(shapeA="file rod.stl", xA=-0.001, xB=0.0105, vA=0, vB=-v,
-                                                      procs=grid, dt=dtmax, n=60, adapt=adapt, stats=stats()), procs)
-    check(rc == 0, "a cube corner first at %g m/s against the side of a rod runs" % v)
+    name = "veto_%s%d" % ("moving_" if moving else "", procs)
+    adapt = "fix dtv all adapt/timestep creep 1.1 eps %g veto yes file dt_%s.txt" % (P, name)
+    bodies = dict(shapeA="file rod.stl", vB=-v)
+    if moving:   # an obstacle sits where its file puts it: the cube's file centred at xB
+        rotated_cube(os.path.join(a.workdir, "cube_diag_moving.stl"), 0.01, True, shift=0.0105)
+        bodies = dict(shapeA="file rod.stl", shapeB="file cube_diag_moving.stl fixed", vB=0,
+                      motion="fix drive all move/trimesh type 2 linear %g 0 0" % -v)
+    rc, _, log = run(a, DECK, name, dict(xA=-0.001, xB=0.0105, vA=0, procs=grid, dt=dtmax, n=60, adapt=adapt,
+                                         stats=stats(), **bodies), procs)
+    check(rc == 0, "a cube corner first at %g m/s against the side of a rod%s runs"
+          % (v, " (the cube a moving obstacle)" if moving else ""))
     if rc:
         return
     n, t = thermo(log)
-    h = history(os.path.join(a.workdir, "dt_veto_%d.txt" % procs))
+    h = history(os.path.join(a.workdir, "dt_%s.txt" % name))
     vetoed = h[:, 4] > 0
     check(vetoed.any(), "the veto fired (%d vetoed steps)" % vetoed.sum())
     check(col(n, t, "dtv[4]")[-1] == 0, "no step hit dtmin")
@@ -199,17 +211,21 @@ def case_veto(a, procs):
     check(0 < gap <= reach * 1.01, "the first veto once the surface gap %.3g m is within a step's reach %.3g m "
           "(the bounding spheres overlap by %.3g m)" % (gap, reach, -bounding))
     pen = col(n, t, "dtv[8]")[-1]
-    m_eff = 1.0 / (1.0 / (RHO * 1e-6) + 1.0 / (RHO * 8e-8))
+    m_eff = RHO * 8e-8 if moving else 1.0 / (1.0 / (RHO * 1e-6) + 1.0 / (RHO * 8e-8))
     peak = 0.5 * v / math.sqrt(S / (2 * m_eff))
     check(0 < pen <= P, "halo penetration %.3g <= eps %.3g (undamped closed form %.3g)" % (pen, P, peak))
     vrel = col(n, t, "vrel")[-1]
     check(col(n, t, "ncont")[-1] == 0 and 0 < vrel / v < 1, "the cube bounced off the rod without gaining energy "
           "(restitution %.3f)" % (vrel / v))
     if procs > 1:
-        _, t1 = thermo(os.path.join(a.workdir, "log.veto_1"))
+        _, t1 = thermo(os.path.join(a.workdir, "log.veto_%s1" % ("moving_" if moving else "")))
         if len(t1):
             diff = np.max(np.abs(t1[:, 3] - t[:, 3])) if len(t1) == len(t) else float("inf")
             check(diff < 1e-12, "2 ranks: the 1-rank run's separations to %.1e m" % diff)
+
+
+def case_veto_moving(a, procs):
+    case_veto(a, procs, moving=True)
 
 
 def quat_z(angle):
@@ -317,7 +333,7 @@ def main():
     os.makedirs(a.workdir, exist_ok=True)
     name, _, procs = a.case.partition(":")
     procs = int(procs or 1)
-    if procs > 1 and name in ("collide", "veto", "rollback"):
+    if procs > 1 and name in ("collide", "veto", "veto_moving", "rollback"):
         globals()["case_" + name](a, 1)     # the 1-rank run to compare with
     globals()["case_" + name](a, procs)
     return 0 if OK else 1
