@@ -246,7 +246,13 @@ def main():
     ap.add_argument("--results", default=os.path.join(HERE, "results"))
     ap.add_argument("--tag", default="", help="suffix of the output files")
     ap.add_argument("--timeout", type=float, default=900.0, help="per run (s)")
+    ap.add_argument("--replot", action="store_true", help="only redraw the PNG from the stored summary CSV")
     a = ap.parse_args()
+    if a.replot:
+        tag = ("_" + a.tag) if a.tag else ""
+        with open(os.path.join(a.results, "neighbor_vs_lammps%s.csv" % tag)) as f:
+            plot(list(csv.DictReader(f)), os.path.join(a.results, "neighbor_vs_lammps%s.png" % tag))
+        return 0
     for exe in (a.exe, a.lmp):
         if not shutil.which(exe):
             sys.exit("not found: %s (build first: scripts/build.sh; LAMMPS: apt-get install lammps)" % exe)
@@ -373,22 +379,25 @@ def plot(summary, png):
         return
     names = [r["scene"] for r in summary]
     y = list(range(len(names)))
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 0.45 * len(names) + 1.6), sharey=True)
-    ax1.barh(y, [float(r["ratio"]) for r in summary], color="tab:blue")
+    h = 0.38
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 0.5 * len(names) + 1.6), sharey=True)
+    ax1.barh([v - h / 2 for v in y], [float(r["cpu_ratio"]) for r in summary], h, color="tab:blue",
+             label="CPU estimate")
+    ax1.barh([v + h / 2 for v in y], [float(r["ratio"]) for r in summary], h, color="tab:cyan",
+             label="wall time")
     ax1.axvline(0.5, color="k", ls="--", lw=1, label="target 0.5")
     ax1.axvline(1.0, color="grey", ls=":", lw=1)
     ax1.set_xlabel("spacetree / LAMMPS multi (best setting), time per rebuild")
     ax1.set_yticks(y)
     ax1.set_yticklabels(names, fontsize=8)
     ax1.invert_yaxis()
-    ax1.legend(loc="lower right", fontsize=8)
-    h = 0.38
-    ax2.barh([v - h / 2 for v in y], [float(r["spacetree_us_per_atom"]) for r in summary], h,
+    ax1.legend(loc="center right", fontsize=8)
+    ax2.barh([v - h / 2 for v in y], [float(r["spacetree_cpu_us_per_atom"]) for r in summary], h,
              label="spacetree", color="tab:blue")
-    ax2.barh([v + h / 2 for v in y], [float(r["lammps_us_per_atom"]) for r in summary], h,
+    ax2.barh([v + h / 2 for v in y], [float(r["lammps_cpu_us_per_atom"]) for r in summary], h,
              label="LAMMPS multi (best)", color="tab:orange")
     ax2.axvline(0.3, color="k", ls="--", lw=1, label="target 0.3 us")
-    ax2.set_xlabel("us per atom per rebuild (1 rank)")
+    ax2.set_xlabel("CPU us per atom per rebuild (estimate, 1 rank)")
     ax2.legend(loc="lower right", fontsize=8)
     fig.tight_layout()
     fig.savefig(png, dpi=120)
