@@ -23,8 +23,9 @@ Scenes (generated here with scripts/gen_pack.py, or ported; all lengths in m, sm
 
 Every scene runs `neigh_modify every 10 check no` with the particles held in place (no
 integrator: both codes rebuild their lists from scratch at every rebuild, and the two codes
-see bit-identical positions, so their neighbour counts must agree exactly): LIGGGHTS (inputs/bench/in.neighbor_bench)
-with `spacetree` and, at R = 1, stock `bin`; LAMMPS (inputs/bench/in.neighbor_lammps) with
+see bit-identical positions, so their neighbour counts must agree exactly): LIGGGHTS
+(inputs/bench/in.neighbor_bench with walls 0: no walls, as in the LAMMPS deck) with `spacetree`
+and, at R = 1, stock `bin`; LAMMPS (inputs/bench/in.neighbor_lammps) with
 `neighbor multi` under each collection setting (collections by size: the two sizes of a
 bidisperse pack, or geometric size intervals from the smallest to the biggest diameter, one
 collection per factor 3, 5, 10 or 30 in size), newton on (LAMMPS' faster mode; without ghosts
@@ -32,7 +33,10 @@ the half lists are the same).
 The variants of one scene run interleaved, --repeats times; medians are reported. Time per
 rebuild: the code's `Neigh` time of the run (LIGGGHTS: pre_neighbor fixes + list build, with
 the contact history copied into the list; LAMMPS: the list build only, its history copy is
-`fix NEIGH_HISTORY` in `Modify`) over `Neighbor list builds`. Memory: peak RSS of the run
+`fix NEIGH_HISTORY` in `Modify`) over `Neighbor list builds`. On a loaded machine the wall
+time of a short run is mostly waiting for a core, so a CPU estimate is reported beside it: the
+`Neigh` share of the loop's wall time times the CPU time (user + system) the run adds over the
+same deck stopped before `run`, per rebuild. Memory: peak RSS of the run
 minus peak RSS of the same deck stopped before `run` (data read, styles set up).
 
 Writes bench/results/neighbor_vs_lammps_runs.csv (every run), neighbor_vs_lammps.csv (medians
@@ -62,27 +66,27 @@ D = 1e-3
 # name -> how to make it. gen: gen_pack.py arguments (without --out); skin in m; steps of the
 # run (10 steps per rebuild); one/page: neigh_modify one/page for both codes.
 SCENES = {
-    "bidisperse_R1": dict(gen=["bidisperse", "--R", "1", "--n", "30", "--K", "0"], skin=1e-4, steps=100, bin=True),
-    "bidisperse_R10": dict(gen=["bidisperse", "--R", "10", "--n", "30", "--K", "8"], skin=1e-4, steps=100),
+    "bidisperse_R1": dict(gen=["bidisperse", "--R", "1", "--n", "30", "--K", "0"], skin=1e-4, steps=300, bin=True),
+    "bidisperse_R10": dict(gen=["bidisperse", "--R", "10", "--n", "30", "--K", "8"], skin=1e-4, steps=300),
     "bidisperse_R20": dict(gen=["bidisperse", "--R", "20", "--n", "40", "--K", "1", "--big-at", "0.5", "0.5", "0.5"],
-                           skin=1e-4, steps=50),
+                           skin=1e-4, steps=100),
     "bidisperse_R50": dict(gen=["bidisperse", "--R", "50", "--n", "60", "--K", "1", "--big-at", "0.5", "0.5", "0.5"],
-                           skin=1e-4, steps=50),
+                           skin=1e-4, steps=100),
     "bidisperse_R100": dict(gen=["bidisperse", "--R", "100", "--n", "100", "--K", "1", "--big-at", "0.5", "0.5",
                                  "0.5"], skin=1e-4, steps=30),
     "big_sphere_R60": dict(gen=["bidisperse", "--R", "60", "--n", "62", "--K", "1", "--big-at", "0.5", "0.5", "0.5"],
-                           skin=5e-4, steps=50, one=20000, page=200000),
+                           skin=5e-4, steps=100, one=20000, page=200000),
     "powerlaw_100_f50": dict(gen=["continuous", "--law", "power", "--exponent", "3", "--rmin", "0.5e-3",
-                                    "--rmax", "50e-3", "--n", "40000", "--fill", "0.5"], skin=1e-4, steps=100),
+                                    "--rmax", "50e-3", "--n", "40000", "--fill", "0.5"], skin=1e-4, steps=300),
     "powerlaw_100_f30": dict(gen=["continuous", "--law", "power", "--exponent", "3", "--rmin", "0.5e-3",
-                                  "--rmax", "50e-3", "--n", "40000", "--fill", "0.3"], skin=1e-4, steps=100),
+                                  "--rmax", "50e-3", "--n", "40000", "--fill", "0.3"], skin=1e-4, steps=300),
     "powerlaw_100_f10": dict(gen=["continuous", "--law", "power", "--exponent", "3", "--rmin", "0.5e-3",
-                                     "--rmax", "50e-3", "--n", "40000", "--fill", "0.1"], skin=1e-4, steps=100),
+                                     "--rmax", "50e-3", "--n", "40000", "--fill", "0.1"], skin=1e-4, steps=300),
     "powerlaw_1000_f20": dict(gen=["continuous", "--law", "power", "--exponent", "3", "--rmin", "0.5e-3",
-                                   "--rmax", "0.5", "--n", "150000", "--fill", "0.2"], skin=1e-4, steps=50),
+                                   "--rmax", "0.5", "--n", "150000", "--fill", "0.2"], skin=1e-4, steps=100),
     "powerlaw_1000_f10": dict(gen=["continuous", "--law", "power", "--exponent", "3", "--rmin", "0.5e-3",
-                                      "--rmax", "0.5", "--n", "150000", "--fill", "0.1"], skin=1e-4, steps=50),
-    "lammps_examples_powerlaw": dict(port=LAMMPS_POWERLAW, skin=1e-3, steps=100),
+                                      "--rmax", "0.5", "--n", "150000", "--fill", "0.1"], skin=1e-4, steps=100),
+    "lammps_examples_powerlaw": dict(port=LAMMPS_POWERLAW, skin=1e-3, steps=300),
 }
 GEOMETRIC_FACTORS = (3.0, 5.0, 10.0, 30.0)
 
@@ -195,8 +199,11 @@ def parse_log(text):
     res["builds"] = int(m.group(1)) if m else 0
     m = re.search(r"Total # of neighbors = (\S+)", text)
     res["neighbours"] = int(float(m.group(1))) if m else -1
-    m = re.search(r"Loop time of \S+ on \d+ procs for \d+ steps with (\d+) atoms", text)
-    res["atoms"] = int(m.group(1)) if m else 0
+    m = re.search(r"Loop time of (\S+) on \d+ procs for \d+ steps with (\d+) atoms", text)
+    res["atoms"] = int(m.group(2)) if m else 0
+    res["loop_s"] = float(m.group(1)) if m else float("nan")
+    cpu = [float(v) for v in re.findall(r"(?:User|System) time \(seconds\): (\S+)", text)]
+    res["cpu_s"] = sum(cpu) if len(cpu) == 2 else float("nan")
     m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", text)
     res["peak_rss_mb"] = int(m.group(1)) / 1024.0 if m else float("nan")
     return res
@@ -210,7 +217,7 @@ def run(variant, data, spec, workdir, a, baseline=False):
               str(spec.get("page", 100000)), "-var", "integrate", "0",
               "-var", "baseline", "1" if baseline else "0"]
     if code == "liggghts":
-        cmd = [a.exe, "-in", DECK_LIGGGHTS, "-var", "nstyle", style] + common
+        cmd = [a.exe, "-in", DECK_LIGGGHTS, "-var", "nstyle", style, "-var", "walls", "0"] + common
     else:
         cmd = [a.lmp, "-in", DECK_LAMMPS, "-var", "nstyle", style, "-var", "coll", setting] + common
     cmd = ["/usr/bin/time", "-v"] + cmd + ["-log", logpath, "-echo", "none", "-screen", "none"]
@@ -239,7 +246,13 @@ def main():
     ap.add_argument("--results", default=os.path.join(HERE, "results"))
     ap.add_argument("--tag", default="", help="suffix of the output files")
     ap.add_argument("--timeout", type=float, default=900.0, help="per run (s)")
+    ap.add_argument("--replot", action="store_true", help="only redraw the PNG from the stored summary CSV")
     a = ap.parse_args()
+    if a.replot:
+        tag = ("_" + a.tag) if a.tag else ""
+        with open(os.path.join(a.results, "neighbor_vs_lammps%s.csv" % tag)) as f:
+            plot(list(csv.DictReader(f)), os.path.join(a.results, "neighbor_vs_lammps%s.png" % tag))
+        return 0
     for exe in (a.exe, a.lmp):
         if not shutil.which(exe):
             sys.exit("not found: %s (build first: scripts/build.sh; LAMMPS: apt-get install lammps)" % exe)
@@ -262,17 +275,21 @@ def main():
             variants.append(("liggghts", "bin", ""))
         variants += [("lammps", "multi", s) for s in lammps_settings(diameters)]
         times = {v: [] for v in variants}
-        counts, rss = {}, {}
+        counts, rss, cpu_runs = {}, {}, {}
         for rep in range(a.repeats):
             for v in variants:
                 res = run(v, data, spec, a.workdir, a)
                 row = dict(scene=name, atoms=res.get("atoms", len(diameters)), code=v[0], style=v[1], setting=v[2],
                            repeat=rep, builds=res.get("builds", 0), neighbours=res.get("neighbours", -1),
                            peak_rss_mb="%.1f" % res.get("peak_rss_mb", float("nan")), load1=res["load1"],
-                           ms_per_rebuild="", error=res.get("error", ""))
+                           ms_per_rebuild="", neigh_s=res.get("neigh_s", ""), loop_s=res.get("loop_s", ""),
+                           cpu_s=res.get("cpu_s", ""), error=res.get("error", ""))
                 if "error" not in res:
                     per = res["neigh_s"] / res["builds"]
                     times[v].append(per)
+                    # Load-independent estimate: the Neigh share of the loop's wall time, times the
+                    # CPU time the run adds over the set-up alone (baseline below).
+                    cpu_runs.setdefault(v, []).append((res["neigh_s"] / res["loop_s"], res["cpu_s"], res["builds"]))
                     counts.setdefault(v, res["neighbours"])
                     rss.setdefault(v, []).append(res["peak_rss_mb"])
                     row["ms_per_rebuild"] = "%.4g" % (1e3 * per)
@@ -282,11 +299,14 @@ def main():
                     print("  %-8s %-9s %-60s FAILED %s" % (v[0], v[1], v[2][:60], res["error"]))
                 runs.append(row)
         # memory the run adds over the set-up alone, per code
-        base = {}
+        base, base_cpu = {}, {}
         for code in ("liggghts", "lammps"):
             res = run((code, "spacetree" if code == "liggghts" else "multi", ""), data, spec, a.workdir, a,
                       baseline=True)
             base[code] = res.get("peak_rss_mb", float("nan"))
+            base_cpu[code] = res.get("cpu_s", float("nan"))
+        cpu_med = {v: statistics.median([share * (cpu - base_cpu[v[0]]) / builds for share, cpu, builds in c])
+                   for v, c in cpu_runs.items()}
         med = {v: statistics.median(t) for v, t in times.items() if t}
         st = variants[0]
         lammps = [v for v in med if v[0] == "lammps"]
@@ -301,19 +321,24 @@ def main():
                     lammps_best_setting=best[2], ratio="%.3f" % (med[st] / med[best]),
                     spacetree_us_per_atom="%.4g" % (1e6 * med[st] / atoms),
                     lammps_us_per_atom="%.4g" % (1e6 * med[best] / atoms),
+                    spacetree_cpu_us_per_atom="%.4g" % (1e6 * cpu_med[st] / atoms),
+                    lammps_cpu_us_per_atom="%.4g" % (1e6 * cpu_med[best] / atoms),
+                    cpu_ratio="%.3f" % (cpu_med[st] / cpu_med[best]),
                     spacetree_run_mb="%.1f" % (statistics.median(rss[st]) - base["liggghts"]),
                     lammps_run_mb="%.1f" % (statistics.median(rss[best]) - base["lammps"]),
-                    bin_ms="", bin_run_mb="", repeats=a.repeats,
+                    bin_ms="", bin_cpu_us_per_atom="", bin_run_mb="", repeats=a.repeats,
                     load1_median="%.2f" % statistics.median([r["load1"] for r in runs if r["scene"] == name]))
         binv = ("liggghts", "bin", "")
         if binv in med:
             srow["bin_ms"] = "%.4g" % (1e3 * med[binv])
+            srow["bin_cpu_us_per_atom"] = "%.4g" % (1e6 * cpu_med[binv] / atoms)
             srow["bin_run_mb"] = "%.1f" % (statistics.median(rss[binv]) - base["liggghts"])
         summary.append(srow)
-        print("  => spacetree %s ms, LAMMPS multi best %s ms (%s): ratio %s, %s us/atom; counts %s; run memory "
-              "%s MB vs %s MB" % (srow["spacetree_ms"], srow["lammps_best_ms"], best[2], srow["ratio"],
-                                  srow["spacetree_us_per_atom"], "equal" if equal else "DIFFER " + str(counts),
-                                  srow["spacetree_run_mb"], srow["lammps_run_mb"]))
+        print("  => spacetree %s ms, LAMMPS multi best %s ms (%s): ratio %s, %s us/atom; CPU estimate %s vs %s "
+              "us/atom (ratio %s); counts %s; run memory %s MB vs %s MB"
+              % (srow["spacetree_ms"], srow["lammps_best_ms"], best[2], srow["ratio"], srow["spacetree_us_per_atom"],
+                 srow["spacetree_cpu_us_per_atom"], srow["lammps_cpu_us_per_atom"], srow["cpu_ratio"],
+                 "equal" if equal else "DIFFER " + str(counts), srow["spacetree_run_mb"], srow["lammps_run_mb"]))
         if not equal:
             print("  ERROR: neighbour counts differ")
 
@@ -329,12 +354,13 @@ def main():
         w.writeheader()
         w.writerows(summary)
     print("\nwrote %s" % path)
-    print("\n%-26s %8s %10s %10s %7s %9s %9s %6s" % ("scene", "atoms", "st ms", "lmp ms", "ratio", "st us/at",
-                                                     "lmp us/at", "equal"))
+    print("\n%-26s %8s %10s %10s %7s %9s %9s %9s %9s %6s" % ("scene", "atoms", "st ms", "lmp ms", "ratio",
+                                                            "st us/at", "lmp us/at", "st cpu", "lmp cpu", "equal"))
     for r in summary:
-        print("%-26s %8d %10s %10s %7s %9s %9s %6s" % (r["scene"], r["atoms"], r["spacetree_ms"], r["lammps_best_ms"],
-                                                       r["ratio"], r["spacetree_us_per_atom"],
-                                                       r["lammps_us_per_atom"], r["counts_equal"]))
+        print("%-26s %8d %10s %10s %7s %9s %9s %9s %9s %6s"
+              % (r["scene"], r["atoms"], r["spacetree_ms"], r["lammps_best_ms"], r["ratio"],
+                 r["spacetree_us_per_atom"], r["lammps_us_per_atom"], r["spacetree_cpu_us_per_atom"],
+                 r["lammps_cpu_us_per_atom"], r["counts_equal"]))
     rc, uptime = sh(["uptime"])
     print("machine: %s" % uptime.strip())
     plot(summary, os.path.join(a.results, "neighbor_vs_lammps%s.png" % tag))
@@ -353,22 +379,25 @@ def plot(summary, png):
         return
     names = [r["scene"] for r in summary]
     y = list(range(len(names)))
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 0.45 * len(names) + 1.6), sharey=True)
-    ax1.barh(y, [float(r["ratio"]) for r in summary], color="tab:blue")
+    h = 0.38
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 0.5 * len(names) + 1.6), sharey=True)
+    ax1.barh([v - h / 2 for v in y], [float(r["cpu_ratio"]) for r in summary], h, color="tab:blue",
+             label="CPU estimate")
+    ax1.barh([v + h / 2 for v in y], [float(r["ratio"]) for r in summary], h, color="tab:cyan",
+             label="wall time")
     ax1.axvline(0.5, color="k", ls="--", lw=1, label="target 0.5")
     ax1.axvline(1.0, color="grey", ls=":", lw=1)
     ax1.set_xlabel("spacetree / LAMMPS multi (best setting), time per rebuild")
     ax1.set_yticks(y)
     ax1.set_yticklabels(names, fontsize=8)
     ax1.invert_yaxis()
-    ax1.legend(loc="lower right", fontsize=8)
-    h = 0.38
-    ax2.barh([v - h / 2 for v in y], [float(r["spacetree_us_per_atom"]) for r in summary], h,
+    ax1.legend(loc="center right", fontsize=8)
+    ax2.barh([v - h / 2 for v in y], [float(r["spacetree_cpu_us_per_atom"]) for r in summary], h,
              label="spacetree", color="tab:blue")
-    ax2.barh([v + h / 2 for v in y], [float(r["lammps_us_per_atom"]) for r in summary], h,
+    ax2.barh([v + h / 2 for v in y], [float(r["lammps_cpu_us_per_atom"]) for r in summary], h,
              label="LAMMPS multi (best)", color="tab:orange")
     ax2.axvline(0.3, color="k", ls="--", lw=1, label="target 0.3 us")
-    ax2.set_xlabel("us per atom per rebuild (1 rank)")
+    ax2.set_xlabel("CPU us per atom per rebuild (estimate, 1 rank)")
     ax2.legend(loc="lower right", fontsize=8)
     fig.tight_layout()
     fig.savefig(png, dpi=120)

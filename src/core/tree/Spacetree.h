@@ -72,7 +72,7 @@ class Spacetree {
   // |x_i - x_j| <= r_i + r_j + 2 eps; the visitor applies the exact cut-off.
   template <class Visitor>
   void forEachCandidatePair(Visitor&& visit) {
-    sweep([&](std::int32_t a, std::int32_t b) { visit(sortedId_[a], sortedId_[b]); }, 1.0 + kPruneMargin);
+    sweep(CandidateVisitor<Visitor>{*this, visit}, 1.0 + kPruneMargin);
   }
 
   // Like forEachCandidatePair, but only pairs with
@@ -82,14 +82,8 @@ class Spacetree {
   // (contact_distance_factor 1); a small tolerance makes it a superset of other roundings.
   template <class Visitor>
   void forEachPairWithin(Visitor&& visit, double relativeTolerance = 0.0) {
-    const double halo = 2.0 * options_.epsilon;
     const double scale = 1.0 + relativeTolerance;
-    sweep([&](std::int32_t a, std::int32_t b) {
-      const double dx = sx_[a] - sx_[b], dy = sy_[a] - sy_[b], dz = sz_[a] - sz_[b];
-      const double cut = (sr_[a] + sr_[b] + halo) * scale;
-      const double distanceSquared = dx * dx + dy * dy + dz * dz;
-      if (distanceSquared <= cut * cut) visit(sortedId_[a], sortedId_[b], distanceSquared);
-    }, scale * (1.0 + kPruneMargin));
+    sweep(WithinVisitor<Visitor>{*this, visit, 2.0 * options_.epsilon, scale}, scale * (1.0 + kPruneMargin));
   }
 
   int levelOf(int particle) const { return particleLevel_[particle]; }
@@ -147,7 +141,55 @@ class Spacetree {
     std::vector<Box> boxes;               // of the crowded vertices' [begin, bigBegin)
   };
 
-  // The traversal; onPair(a, b) receives positions in the sorted arrays.
+  // What the traversal calls (positions in the sorted arrays): onPair(a, b) for one candidate
+  // pair, and onPair.range(a, first, last, aActive) for a against each of the contiguous
+  // positions [first, last) in order, skipping the pairs of two inactive particles (aActive:
+  // whether a is active). Candidates go to the visitor as they are; pairs within the cut-off
+  // are selected branch-free over a range (most candidates of a dense level miss) and then
+  // visited in order, with their distance evaluated as for a single pair.
+  template <class Visit>
+  struct CandidateVisitor {
+    const Spacetree& tree;
+    Visit& visit;
+    void operator()(std::int32_t a, std::int32_t b) const { visit(tree.sortedId_[a], tree.sortedId_[b]); }
+    void range(std::int32_t a, std::int32_t first, std::int32_t last, bool aActive) const {
+      for (std::int32_t b = first; b < last; ++b)
+        if (aActive || tree.isActive(b)) (*this)(a, b);
+    }
+  };
+  template <class Visit>
+  struct WithinVisitor {
+    const Spacetree& tree;
+    Visit& visit;
+    double halo, scale;
+    double distanceSquared(std::int32_t a, std::int32_t b) const {
+      const double dx = tree.sx_[a] - tree.sx_[b], dy = tree.sy_[a] - tree.sy_[b], dz = tree.sz_[a] - tree.sz_[b];
+      return dx * dx + dy * dy + dz * dz;
+    }
+    double cut(std::int32_t a, std::int32_t b) const { return (tree.sr_[a] + tree.sr_[b] + halo) * scale; }
+    void operator()(std::int32_t a, std::int32_t b) const {
+      const double d2 = distanceSquared(a, b), c = cut(a, b);
+      if (d2 <= c * c) visit(tree.sortedId_[a], tree.sortedId_[b], d2);
+    }
+    void range(std::int32_t a, std::int32_t first, std::int32_t last, bool aActive) const {
+      constexpr std::int32_t kChunk = 32;
+      std::int32_t hits[kChunk];
+      for (std::int32_t start = first; start < last; start += kChunk) {
+        const std::int32_t stop = std::min(last, start + kChunk);
+        std::int32_t count = 0;
+        for (std::int32_t b = start; b < stop; ++b) {
+          const double d2 = distanceSquared(a, b), c = cut(a, b);
+          hits[count] = b;
+          count += d2 <= c * c ? 1 : 0;
+        }
+        for (std::int32_t t = 0; t < count; ++t) {
+          const std::int32_t b = hits[t];
+          if (aActive || tree.isActive(b)) visit(tree.sortedId_[a], tree.sortedId_[b], distanceSquared(a, b));
+        }
+      }
+    }
+  };
+  // The traversal, calling onPair as above.
   // pruneScale: pairs of crowded vertices are skipped when a coordinate difference exceeds
   // (r_max + r_max' + 2 eps) pruneScale, a bound at or above the visitor's cut-off.
   template <class PairFunction>

@@ -57,8 +57,69 @@ void Spacetree::sweepLevel(int l, PairFunction& onPair, double pruneScale, std::
 
   for (std::size_t p = 0; p < nv; ++p) {
     const Vertex& v = level.vertices[p];
-    // 1. Real particles of this vertex among themselves.
+    const std::uint64_t key = keys[p];
     const bool allActive = v.active == v.end - v.begin;  // no ghost: skip per-pair checks
+
+    // Against the real particles of a forward vertex-connected neighbour, one by one.
+    auto pairWith = [&](std::size_t w) {
+      const Vertex& nb = level.vertices[w];
+      if (v.active == 0 && nb.active == 0) return;
+      if constexpr (kCrowded) {
+        if (v.sortedByX() || nb.sortedByX()) {
+          candidatePairs += sweepCrowdedPair(level, v, nb, halo, pruneScale, onPair);
+          return;
+        }
+      }
+      if (allActive || nb.active == nb.end - nb.begin) {
+        for (std::int32_t a = v.begin; a < v.end; ++a)
+          for (std::int32_t b = nb.begin; b < nb.end; ++b) onPair(a, b);
+      } else {
+        for (std::int32_t a = v.begin; a < v.end; ++a)
+          for (std::int32_t b = nb.begin; b < nb.end; ++b)
+            if (isActive(a) || isActive(b)) onPair(a, b);
+      }
+      candidatePairs += std::uint64_t(v.end - v.begin) * (nb.end - nb.begin);
+    };
+    // Whether vertices [t0, t1) are all plain (their particles are then one run of positions).
+    auto plain = [&](std::size_t t0, std::size_t t1) {
+      if constexpr (kCrowded) {
+        for (std::size_t t = t0; t < t1; ++t)
+          if (level.vertices[t].sortedByX()) return false;
+      }
+      return true;
+    };
+
+    if (v.active > 0 && plain(p, p + 1)) {
+      // A plain vertex with an active particle: its particles after a, with those of a plain
+      // (i, j, k + 1), are one run of positions (sorted by key); so are those of each forward
+      // row's k - 1 .. k + 1 when all are plain. Each a goes against a whole run.
+      const std::int32_t n = v.end - v.begin;
+      const bool next = p + 1 < nv && keys[p + 1] == key + 1;
+      const bool nextPlain = next && plain(p + 1, p + 2);
+      const std::int32_t end = nextPlain ? level.vertices[p + 1].end : v.end;
+      for (std::int32_t a = v.begin; a < v.end; ++a) onPair.range(a, a + 1, end, isActive(a));
+      candidatePairs += std::uint64_t(n) * (n - 1) / 2 + std::uint64_t(n) * std::uint64_t(end - v.end);
+      if (next && !nextPlain) pairWith(p + 1);
+      for (int c = 0; c < 4; ++c) {
+        const std::uint64_t first = key + kRowOffsets[c];
+        std::size_t t = cursor[c];
+        while (t < nv && keys[t] < first) ++t;
+        cursor[c] = t;
+        const std::size_t t0 = t;
+        while (t < nv && keys[t] <= first + 2) ++t;
+        if (t == t0) continue;
+        if (!plain(t0, t)) {
+          for (std::size_t w = t0; w < t; ++w) pairWith(w);
+          continue;
+        }
+        const std::int32_t b0 = level.vertices[t0].begin, b1 = level.vertices[t - 1].end;
+        for (std::int32_t a = v.begin; a < v.end; ++a) onPair.range(a, b0, b1, isActive(a));
+        candidatePairs += std::uint64_t(n) * std::uint64_t(b1 - b0);
+      }
+      continue;
+    }
+
+    // 1. Real particles of this vertex among themselves.
     if (kCrowded && v.sortedByX()) {
       const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
       for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
@@ -80,26 +141,6 @@ void Spacetree::sweepLevel(int l, PairFunction& onPair, double pruneScale, std::
     }
 
     // 2. Against the real particles of the forward vertex-connected neighbours.
-    auto pairWith = [&](std::size_t w) {
-      const Vertex& nb = level.vertices[w];
-      if (v.active == 0 && nb.active == 0) return;
-      if constexpr (kCrowded) {
-        if (v.sortedByX() || nb.sortedByX()) {
-          candidatePairs += sweepCrowdedPair(level, v, nb, halo, pruneScale, onPair);
-          return;
-        }
-      }
-      if (allActive || nb.active == nb.end - nb.begin) {
-        for (std::int32_t a = v.begin; a < v.end; ++a)
-          for (std::int32_t b = nb.begin; b < nb.end; ++b) onPair(a, b);
-      } else {
-        for (std::int32_t a = v.begin; a < v.end; ++a)
-          for (std::int32_t b = nb.begin; b < nb.end; ++b)
-            if (isActive(a) || isActive(b)) onPair(a, b);
-      }
-      candidatePairs += std::uint64_t(v.end - v.begin) * (nb.end - nb.begin);
-    };
-    const std::uint64_t key = keys[p];
     if (p + 1 < nv && keys[p + 1] == key + 1) pairWith(p + 1);
     for (int c = 0; c < 4; ++c) {
       const std::uint64_t first = key + kRowOffsets[c];
