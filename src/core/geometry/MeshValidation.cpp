@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 #include <unordered_map>
 #include <vector>
 
@@ -69,11 +70,21 @@ MeshValidationReport validateMesh(TriangleMesh& mesh, const std::string& name,
     }
   }
 
-  // 3. zero-area triangles
+  // 2b. the size: areas (L^2) and volumes (L^3) must be representable
   Eigen::AlignedBox3d box;
   for (const auto& f : mesh.triangles)
     for (int v : f) box.extend(mesh.vertices[v]);
+  const double extent = box.diagonal().stableNorm();  // no overflow or underflow on the way
+  if (!(extent <= kMaxMeshExtent) || (extent > 0.0 && extent < kMinMeshExtent)) {
+    std::ostringstream text;
+    text << "bounding-box diagonal " << extent << " is outside [" << kMinMeshExtent << ", "
+         << kMaxMeshExtent << "] (areas, volumes or moments of inertia would overflow or "
+         << "underflow in double)";
+    fail(name, text.str());
+  }
   const double diagonal = box.diagonal().norm();
+
+  // 3. zero-area triangles
   const double minimumArea = options.areaTolerance * diagonal * diagonal;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const double area = 0.5 * mesh.areaVector(t).norm();

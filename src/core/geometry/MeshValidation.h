@@ -2,7 +2,10 @@
 // validateMesh() checks, in this order, and throws MeshError ("<name>: <problem> ...", naming
 // the first offending triangle, edge or vertex) on the first failure:
 //   1. at least one triangle; every index in range;
-//   2. every vertex coordinate finite (no inf / nan);
+//   2. every vertex coordinate finite (no inf / nan), and the bounding-box diagonal L (0 is
+//      left to 3.) in [kMinMeshExtent, kMaxMeshExtent] = [1e-50, 1e50] (any length unit), so
+//      that the squared areas (L^4) and the moments of inertia (L^5) neither overflow nor
+//      underflow in double;
 //   3. no zero-area triangle: |(v1 - v0) x (v2 - v0)| / 2 > areaTolerance * L^2, L the diagonal
 //      of the bounding box (this also rejects triangles with a repeated vertex);
 //   4. closed (watertight and manifold): every undirected edge belongs to exactly two
@@ -24,6 +27,9 @@
 #include "geometry/TriangleMesh.h"
 
 namespace spacetree::geometry {
+
+inline constexpr double kMinMeshExtent = 1e-50;
+inline constexpr double kMaxMeshExtent = 1e50;
 
 struct MeshValidationOptions {
   double areaTolerance = 1e-14;    // relative to L^2 (L: bounding-box diagonal)
