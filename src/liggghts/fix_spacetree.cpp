@@ -10,6 +10,7 @@
 
 #include "comm.h"
 #include "error.h"
+#include "fix_lookup.h"
 #include "force.h"
 #include "modify.h"
 #include "neigh_spacetree.h"
@@ -100,7 +101,7 @@ FixSpacetree::FixSpacetree(LAMMPS *lmp, int narg, char **arg) :
   // pair is then checked in restart() / init().
   if (given[kShock] == given[kThreshold]) check_options();
   if (given[kVtk]) check_options();
-  if (modify->find_fix_style_strict("spacetree",0))
+  if (find_other_fix_of_style(modify,"spacetree",this))
     error->all(FLERR,"Fix spacetree: only one fix spacetree may exist");
   if (vtk_every > 0) nevery = vtk_every;
 }
@@ -118,9 +119,12 @@ void FixSpacetree::check_options()
                "name needs a '%' (replaced by the rank; each rank writes its own grid)");
 }
 
-FixSpacetree::~FixSpacetree()
+// Not in the destructor: LAMMPS::destroy() (exit, `clear`) deletes Neighbor before Modify, so
+// a fix destructor must not touch `neighbor`. Modify calls pre_delete(true) only for `unfix` or
+// a replacing `fix` command, while Neighbor is alive; at teardown (false) there is no list left.
+void FixSpacetree::pre_delete(bool unfixflag)
 {
-  if (neighbor->spacetree && neighbor->spacetree->grid_fix == this)
+  if (unfixflag && neighbor && neighbor->spacetree && neighbor->spacetree->grid_fix == this)
     neighbor->spacetree->grid_fix = NULL;
 }
 

@@ -39,7 +39,7 @@ namespace LAMMPS_NS {
 class FixSpacetree : public Fix {
  public:
   FixSpacetree(class LAMMPS *, int, char **);
-  ~FixSpacetree();
+  void pre_delete(bool unfixflag);
   int setmask();
   void init();
   void end_of_step();

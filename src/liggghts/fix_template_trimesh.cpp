@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "error.h"
+#include "fix_lookup.h"
 #include "fix_trimesh_template.h"
 #include "force.h"
 #include "lammps.h"
@@ -33,10 +34,8 @@ TrimeshInsertionSphere::TrimeshInsertionSphere(LAMMPS *lmp, int narg, char **arg
                "'fix ID group particletemplate/trimesh SEED atom_type T'");
   const int type = lmp->force->inumeric(FLERR,arg[5]);
 
-  FixTrimeshTemplate *templ = NULL;
-  for (int i = 0; i < lmp->modify->nfix; i++)
-    if (strcmp(lmp->modify->fix[i]->style,"trimesh/template") == 0)
-      templ = static_cast<FixTrimeshTemplate *>(lmp->modify->fix[i]);
+  FixTrimeshTemplate *templ = static_cast<FixTrimeshTemplate *>(
+      find_other_fix_of_style(lmp->modify,"trimesh/template",NULL));
   if (!templ)
     error->all(FLERR,"Fix particletemplate/trimesh needs fix trimesh/template defined before it");
   const TrimeshTypeTemplate *tt = templ->type_template(type);
