@@ -29,6 +29,7 @@
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
+#include "trimesh_deck_checks.h"
 #include "trimesh_parallel_contacts.h"
 #include "update.h"
 
@@ -244,6 +245,8 @@ void PairTrimesh::init_style()
   if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
   templ->set_halo(model->contact.epsilon);
   templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
+  check_template_types_reach_trimesh(lmp,*templ);
+  check_grains_fit_box(lmp,*templ);
 
   const int irequest = neighbor->request(this);
   neighbor->requests[irequest]->half = 0;
