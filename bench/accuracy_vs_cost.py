@@ -11,8 +11,8 @@ Two problems (decks in inputs/accuracy/):
                error is the drift of kinetic + gravitational + spring energy.
 Policies: fixed dt = tc/k (tc the shortest contact time), and the adaptive step (creep 1.1,
 veto, eps, dtcontact = the finest fixed dt; with and without rollback).
-Writes docs/accuracy_vs_cost.md (tables), docs/accuracy_vs_cost.csv and
-docs/figures/accuracy_vs_cost_*.png. Wall time: median of --repeats runs ("Loop time" sums).
+Writes docs/accuracy_vs_cost.md (tables), bench/results/accuracy_vs_cost.csv and
+bench/results/accuracy_vs_cost_*.png (--replot: only the PNGs, from the stored CSV). Wall time: median of --repeats runs ("Loop time" sums).
 """
 import argparse
 import csv
@@ -327,13 +327,78 @@ def fmt(x):
     return str(x)
 
 
+def plot(rows, results, repeats):
+    """Draws accuracy_vs_cost_steps.png and accuracy_vs_cost_wall.png into `results`."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 4, figsize=(20, 5.6))
+    for ax, case, metric, title in ((axes[0], "two_spheres", "restitution_error", "two spheres, e = 0.5"),
+                                    (axes[1], "two_spheres", "energy_error", "two spheres, e = 1"),
+                                    (axes[2], "pour", "energy_error", "polydisperse pour, elastic"),
+                                    (axes[3], "rain", "energy_error", "dilute rain, elastic")):
+        sub = [r for r in rows if r["case"] == case]
+        fx = [r for r in sub if r["policy"].startswith("fixed")]
+        ax.loglog([r["steps"] for r in fx], [max(r[metric], 1e-16) for r in fx], "o-", label="fixed dt = tc/k")
+        for r in fx:
+            ax.annotate(r["policy"].split()[1], (r["steps"], max(r[metric], 1e-16)), fontsize=7)
+        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], MARKERS):
+            ax.loglog([r["steps"]], [max(r[metric], 1e-16)], mk, ms=10 if mk != "gs" else 14, mfc="none" if mk in ("gs", "bD", "cD") else None,
+                      label=r["policy"])
+        ax.set_xlabel("steps")
+        ax.set_ylabel(metric.replace("_", " ") + " (relative)")
+        ax.set_title(title)
+        ax.grid(True, which="both", alpha=0.3)
+        # below the panel: the markers sit where a legend inside would cover them
+        ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.16))
+    fig.tight_layout()
+    fig.savefig(os.path.join(results, "accuracy_vs_cost_steps.png"), dpi=100)
+    fig, axes = plt.subplots(1, 3, figsize=(15, 5.6))
+    for ax, case, metric in ((axes[0], "two_spheres", "restitution_error"), (axes[1], "pour", "energy_error"),
+                             (axes[2], "rain", "energy_error")):
+        sub = [r for r in rows if r["case"] == case]
+        fx = [r for r in sub if r["policy"].startswith("fixed")]
+        ax.loglog([r["wall_s"] for r in fx], [max(r[metric], 1e-16) for r in fx], "o-", label="fixed dt = tc/k")
+        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], MARKERS):
+            ax.loglog([r["wall_s"]], [max(r[metric], 1e-16)], mk, ms=10 if mk != "gs" else 14, mfc="none" if mk in ("gs", "bD", "cD") else None,
+                      label=r["policy"])
+        ax.set_xlabel("wall time (s, median of %d)" % repeats)
+        ax.set_ylabel(metric.replace("_", " "))
+        ax.set_title(case)
+        ax.grid(True, which="both", alpha=0.3)
+        # below the panel: the markers sit where a legend inside would cover them
+        ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.16))
+    fig.tight_layout()
+    fig.savefig(os.path.join(results, "accuracy_vs_cost_wall.png"), dpi=100)
+
+
+def read_rows(path):
+    """The rows of accuracy_vs_cost.csv, numbers as floats (steps as int)."""
+    rows = []
+    for row in csv.DictReader(open(path)):
+        r = {}
+        for k, v in row.items():
+            try:
+                r[k] = int(v) if k == "steps" else float(v)
+            except ValueError:
+                r[k] = v
+        rows.append(r)
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "liggghts-spacetree"))
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--skip-pour", action="store_true", help="two-sphere case only (quick look)")
     ap.add_argument("--docs", default=os.path.join(ROOT, "docs"))
+    ap.add_argument("--results", default=os.path.join(ROOT, "bench", "results"))
+    ap.add_argument("--replot", action="store_true",
+                    help="only redraw the two PNGs from the stored CSV (give --repeats as measured)")
     a = ap.parse_args()
+    if a.replot:
+        plot(read_rows(os.path.join(a.results, "accuracy_vs_cost.csv")), a.results, a.repeats)
+        return
     work = os.path.join(ROOT, "build", "bench_accuracy_vs_cost")
     runner = Runner(a.exe, work, a.repeats)
     rows = []
@@ -341,10 +406,10 @@ def main():
     info_pour = pour(runner, rows) if not a.skip_pour else dict(tc=0, tend=0, eps=0)
     info_rain = pour(runner, rows, "rain") if not a.skip_pour else dict(tc=0, tend=0, eps=0)
 
-    os.makedirs(os.path.join(a.docs, "figures"), exist_ok=True)
+    os.makedirs(a.results, exist_ok=True)
     keys = ["case", "policy", "steps", "sim_time", "wall_s", "restitution_error", "restitution_error_max",
             "peak_overlap", "peak_overlap_error", "eps", "energy_error", "energy_error_max"]
-    with open(os.path.join(a.docs, "accuracy_vs_cost.csv"), "w", newline="") as f:
+    with open(os.path.join(a.results, "accuracy_vs_cost.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys, restval="")
         w.writeheader()
         for r in rows:
@@ -365,50 +430,12 @@ def main():
     v_rain = verdict(rows, "rain", ["energy_error"])
     eq_rain = equal_accuracy(rows, "rain", ["energy_error"])
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 4, figsize=(20, 4.2))
-    for ax, case, metric, title in ((axes[0], "two_spheres", "restitution_error", "two spheres, e = 0.5"),
-                                    (axes[1], "two_spheres", "energy_error", "two spheres, e = 1"),
-                                    (axes[2], "pour", "energy_error", "polydisperse pour, elastic"),
-                                    (axes[3], "rain", "energy_error", "dilute rain, elastic")):
-        sub = [r for r in rows if r["case"] == case]
-        fx = [r for r in sub if r["policy"].startswith("fixed")]
-        ax.loglog([r["steps"] for r in fx], [max(r[metric], 1e-16) for r in fx], "o-", label="fixed dt = tc/k")
-        for r in fx:
-            ax.annotate(r["policy"].split()[1], (r["steps"], max(r[metric], 1e-16)), fontsize=7)
-        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], MARKERS):
-            ax.loglog([r["steps"]], [max(r[metric], 1e-16)], mk, ms=10 if mk != "gs" else 14, mfc="none" if mk in ("gs", "bD", "cD") else None,
-                      label=r["policy"])
-        ax.set_xlabel("steps")
-        ax.set_ylabel(metric.replace("_", " ") + " (relative)")
-        ax.set_title(title)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.docs, "figures", "accuracy_vs_cost_steps.png"), dpi=100)
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
-    for ax, case, metric in ((axes[0], "two_spheres", "restitution_error"), (axes[1], "pour", "energy_error"),
-                             (axes[2], "rain", "energy_error")):
-        sub = [r for r in rows if r["case"] == case]
-        fx = [r for r in sub if r["policy"].startswith("fixed")]
-        ax.loglog([r["wall_s"] for r in fx], [max(r[metric], 1e-16) for r in fx], "o-", label="fixed dt = tc/k")
-        for r, mk in zip([r for r in sub if r["policy"].startswith("adaptive")], MARKERS):
-            ax.loglog([r["wall_s"]], [max(r[metric], 1e-16)], mk, ms=10 if mk != "gs" else 14, mfc="none" if mk in ("gs", "bD", "cD") else None,
-                      label=r["policy"])
-        ax.set_xlabel("wall time (s, median of %d)" % a.repeats)
-        ax.set_ylabel(metric.replace("_", " "))
-        ax.set_title(case)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.docs, "figures", "accuracy_vs_cost_wall.png"), dpi=100)
+    plot(rows, a.results, a.repeats)
 
     md = ["# Accuracy versus cost of the time step",
           "",
           "Generated by `/usr/bin/python3 bench/accuracy_vs_cost.py` (decks `inputs/accuracy/`, raw numbers",
-          "in [accuracy_vs_cost.csv](accuracy_vs_cost.csv)); do not edit by hand. Wall time: median of %d runs"
+          "in [accuracy_vs_cost.csv](../bench/results/accuracy_vs_cost.csv)); do not edit by hand. Wall time: median of %d runs"
           % a.repeats,
           "of the LIGGGHTS loop on this machine (2 shared cores). Every policy, fixed ones included, runs",
           "`fix adapt/timestep` (fixed: `creep 1.0 veto no`, which keeps dt and only reports overlaps), so",
@@ -521,8 +548,8 @@ def main():
            "  over five contact phases are the cleaner convergence measure.",
            "* Rollback never triggered here (no step penetrated beyond 0.9 eps): identical results; its",
            "  cost is the per-step copy of the state and of the contact history (the wall-ratio difference).",
-           "", "![error vs steps](figures/accuracy_vs_cost_steps.png)", "",
-           "![error vs wall time](figures/accuracy_vs_cost_wall.png)", ""]
+           "", "![error vs steps](../bench/results/accuracy_vs_cost_steps.png)", "",
+           "![error vs wall time](../bench/results/accuracy_vs_cost_wall.png)", ""]
     with open(os.path.join(a.docs, "accuracy_vs_cost.md"), "w") as f:
         f.write("\n".join(md))
     for case, vs in (("two_spheres", v_ts), ("pour", v_pour), ("rain", v_rain)):

@@ -127,12 +127,18 @@ def plot(summary, out):
                            (axes[1], "ms_per_step", "wall time per step (shared machine)")):
         for k, label in enumerate(labels):
             ss = [s for s in summary if s["executable"] == label]
-            ax.bar([i + k * width for i in range(len(ss))], [float(s[key]) for s in ss], width, label=label)
+            values = [float(s[key]) for s in ss]
+            x = [i + k * width for i in range(len(ss))]
+            ax.bar(x, values, width, label=label)
+            for xi, v in zip(x, values):  # the claim: time relative to the coarsest walls
+                ax.text(xi, v, "%.1f ms\n%.2fx" % (v, v / values[0]), ha="center", va="bottom", fontsize=8)
         ax.set_xticks([i + 0.4 - width / 2 for i in range(len(targets))])
-        ax.set_xticklabels(["~%d tri/wall" % t for t in targets])
-        ax.set_ylabel("ms (median)")
-        ax.set_title(title)
-        ax.legend()
+        ax.set_xticklabels(["~%d triangles\nper wall" % t for t in targets])
+        ax.set_ylabel("ms per step (median)")
+        ax.set_ylim(0, 1.25 * max(float(s[key]) for s in summary))
+        ax.set_title(title + "; label: ratio to 12 triangles", fontsize=10)
+        if len(labels) > 1:
+            ax.legend(loc="lower right")
     fig.suptitle("500 grains in a box of 5 slab obstacles")
     fig.tight_layout()
     fig.savefig(out + ".png", dpi=120)

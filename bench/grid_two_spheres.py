@@ -8,7 +8,8 @@ levels, leaf cells, deepest level, grid-update time; per run: loop wall time (me
   /usr/bin/python3 bench/grid_two_spheres.py [--exe build/liggghts-spacetree] [--repeats 3]
 
 Writes bench/results/grid_two_spheres.csv (every 20th step plus every step with comparisons,
-refinements or coarsenings), grid_two_spheres_summary.csv and grid_two_spheres.png.
+refinements or coarsenings), grid_two_spheres_summary.csv and grid_two_spheres.png (--replot:
+only the PNG, from the stored CSVs).
 """
 import argparse
 import os
@@ -47,13 +48,62 @@ def run(exe, work, grid, tag, steps, every=1):
     return loop, rows
 
 
+def plot(results):
+    """Draws grid_two_spheres.png from the CSV and the summary in `results`."""
+    import csv
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    data = {g: [] for g in GRIDS}
+    for row in csv.DictReader(open(os.path.join(results, "grid_two_spheres.csv"))):
+        data[row["grid"]].append([float(row[c]) for c in COLS])
+    s = {row["grid"]: row for row in csv.DictReader(open(os.path.join(results, "grid_two_spheres_summary.csv")))}
+    steps = int(max(r[0] for g in GRIDS for r in data[g]))
+    repeats = len(s["regular"]["loop_s_runs"].split())
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4.2))
+    colours = {"regular": "tab:blue", "adaptive": "tab:orange", "reluctant": "tab:green"}
+    for g in GRIDS:
+        t = [r[1] for r in data[g]]
+        ax[0].plot(t, [r[2] for r in data[g]], drawstyle="steps-post", color=colours[g], label=g,
+                   lw=1.5 if g != "regular" else 3, alpha=0.8)
+        ax[1].semilogy(t, [r[6] for r in data[g]], color=colours[g], label=g)
+    start, end = float(s["regular"]["contact_start_time"]), float(s["regular"]["contact_end_time"])
+    if start == start:
+        for k in (0, 1):
+            ax[k].axvspan(start, end, color="grey", alpha=0.3, label="spheres touch" if k == 0 else None)
+    ax[0].set_xlabel("simulated time (s)")
+    ax[0].set_ylabel("pair comparisons per step")
+    top = max(r[2] for g in GRIDS for r in data[g])
+    ax[0].set_ylim(-0.05 * top, 1.6 * top)
+    ax[0].set_title("comparisons in all: " + ", ".join("%s %d" % (g, float(s[g]["total_comparisons"])) for g in GRIDS),
+                    fontsize=9)
+    ax[0].legend(loc="upper left", ncol=2, fontsize=8)
+    ax[1].set_xlabel("simulated time (s)")
+    ax[1].set_ylabel("grid cells (all levels)")
+    ax[1].set_title("mean cells: " + ", ".join("%s %.0f" % (g, float(s[g]["mean_cells"])) for g in GRIDS), fontsize=9)
+    ax[1].legend()
+    loops = [float(s[g]["loop_s"]) for g in GRIDS]
+    ax[2].bar(GRIDS, loops, color=[colours[g] for g in GRIDS])
+    for i, v in enumerate(loops):
+        ax[2].text(i, v, "%.3f s" % v, ha="center", va="bottom", fontsize=9)
+    ax[2].set_ylabel("wall time of %d steps (s, median of %d)" % (steps, repeats))
+    ax[2].set_title("loop time, 1 rank", fontsize=9)
+    fig.suptitle("paper §7.1: two spheres (d 0.02 / 0.2) collide, 1 rank")
+    fig.tight_layout()
+    fig.savefig(os.path.join(results, "grid_two_spheres.png"), dpi=120)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "liggghts-spacetree"))
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--steps", type=int, default=40000)
     ap.add_argument("--results", default=os.path.join(ROOT, "bench", "results"))
+    ap.add_argument("--replot", action="store_true", help="only redraw the PNG from the stored CSVs")
     a = ap.parse_args()
+    if a.replot:
+        plot(a.results)
+        return 0
     work = os.path.join(ROOT, "build", "bench_grid_two_spheres")
     os.makedirs(work, exist_ok=True)
     os.makedirs(a.results, exist_ok=True)
@@ -104,33 +154,7 @@ def main():
                  s["contact_end_time"], s["mean_cells"], s["max_cells"], s["mean_leaf_cells"],
                  s["max_deepest_level"], s["refinements"], s["coarsenings"], s["mean_update_us"]))
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 3, figsize=(15, 4))
-    colours = {"regular": "tab:blue", "adaptive": "tab:orange", "reluctant": "tab:green"}
-    for g in GRIDS:
-        t = [r[1] for r in data[g]]
-        ax[0].plot(t, [r[2] for r in data[g]], drawstyle="steps-post", color=colours[g], label=g,
-                   lw=1.5 if g != "regular" else 3, alpha=0.8)
-        ax[1].semilogy(t, [r[6] for r in data[g]], color=colours[g], label=g)
-    s = {x["grid"]: x for x in summary}
-    if s["regular"]["contact_start_time"] == s["regular"]["contact_start_time"]:
-        for k in (0, 1):
-            ax[k].axvspan(s["regular"]["contact_start_time"], s["regular"]["contact_end_time"], color="grey",
-                          alpha=0.3, label="spheres touch" if k == 0 else None)
-    ax[0].set_xlabel("simulated time (s)")
-    ax[0].set_ylabel("pair comparisons per step")
-    ax[0].set_ylim(-0.1, 8.5)
-    ax[0].legend()
-    ax[1].set_xlabel("simulated time (s)")
-    ax[1].set_ylabel("grid cells (all levels)")
-    ax[1].legend()
-    ax[2].bar(GRIDS, [s[g]["loop_s"] for g in GRIDS], color=[colours[g] for g in GRIDS])
-    ax[2].set_ylabel("wall time of %d steps (s, median of %d)" % (a.steps, a.repeats))
-    fig.suptitle("paper §7.1: two spheres (d 0.02 / 0.2) collide, 1 rank")
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.results, "grid_two_spheres.png"), dpi=120)
+    plot(a.results)
     print("wrote %s" % os.path.join(a.results, "grid_two_spheres.{csv,png}"))
     return 0
 

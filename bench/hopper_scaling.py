@@ -245,8 +245,22 @@ def plot(out, steps, repeats, neigh_every):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    summary = [{k: (v if k == "grid" else float(v)) for k, v in row.items()}
-               for row in csv.DictReader(open(out + "_summary.csv"))]
+    if os.path.exists(out + "_summary.csv"):
+        summary = [{k: (v if k == "grid" else float(v)) for k, v in row.items()}
+                   for row in csv.DictReader(open(out + "_summary.csv"))]
+    else:  # only the per-run CSV (e.g. written before the summary existed): its medians
+        runs = list(csv.DictReader(open(out + ".csv")))
+        keys = list(dict.fromkeys((int(r["nx"]), r.get("grid", "none"), int(r["ranks"]), int(r["threads"]))
+                                  for r in runs))
+        summary = []
+        for nx, grid, ranks, threads in keys:
+            mine = [r for r in runs if (int(r["nx"]), r.get("grid", "none"), int(r["ranks"]),
+                                        int(r["threads"])) == (nx, grid, ranks, threads)]
+            med = {k: statistics.median(float(r.get(k, 0.0)) for r in mine) for k in ("s_per_step", "pair_s", "neigh_s")}
+            summary.append(dict(med, nx=nx, grid=grid, ranks=ranks, threads=threads))
+        for m in summary:
+            base = next(b for b in summary if b["nx"] == m["nx"])
+            m["speedup"] = base["s_per_step"] / m["s_per_step"]
     nxs = list(dict.fromkeys(int(m["nx"]) for m in summary))
     per = max(len([m for m in summary if m["nx"] == nx]) for nx in nxs)
     fig, axes = plt.subplots(1, len(nxs), figsize=(max(4.5, 1.1 * per + 2.0) * len(nxs), 4.4), squeeze=False)
@@ -263,14 +277,16 @@ def plot(out, steps, repeats, neigh_every):
         for i, m in enumerate(ms):
             ax.text(i, m["s_per_step"], "%.2fx" % m["speedup"], ha="center", va="bottom", fontsize=8)
         ax.set_xticks(list(x))
+        grids = any(m["grid"] != "none" for m in summary)
         ax.set_xticklabels(["%d rank%s\n%d thread%s%s" % (m["ranks"], "s" * (m["ranks"] > 1), m["threads"],
                                                           "s" * (m["threads"] > 1),
-                                                          "" if m["grid"] == "none" else "\ngrid " + m["grid"])
+                                                          ("\nno grid fix" if m["grid"] == "none" else "\ngrid " + m["grid"])
+                                                          if grids else "")
                             for m in ms], fontsize=8)
-        ax.set_xlabel("MPI ranks x pair_style trimesh threads per rank")
+        ax.set_xlabel("MPI ranks, pair_style trimesh threads per rank" + (", fix spacetree grid" if grids else ""))
         ax.set_title("%d grains (nx %d); label: speed-up over the first bar" % (nx ** 3, nx), fontsize=9)
         ax.set_ylabel("wall s per step (median of %d)" % repeats)
-        ax.set_ylim(0, 1.25 * max(m["s_per_step"] for m in ms))
+        ax.set_ylim(0, 1.45 * max(m["s_per_step"] for m in ms))  # room for the legend above the bars
         ax.legend(fontsize=7, loc="upper left", framealpha=0.9)
     fig.suptitle("hopper deck, %d steps%s" % (steps, ", lists rebuilt every %d" % neigh_every if neigh_every else ""),
                  fontsize=9)
@@ -282,7 +298,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe")
     ap.add_argument("--replot", action="store_true",
-                    help="only redraw OUT.png from OUT_summary.csv (give --out, --steps, --repeats as measured)")
+                    help="only redraw OUT.png from OUT_summary.csv, or from the medians of OUT.csv without it "
+                         "(give --out, --steps, --repeats as measured)")
     ap.add_argument("--sizes", type=ints, default=[1000], help="grain counts (nx = round(N^(1/3)))")
     ap.add_argument("--nx", type=ints, default=None, help="lattice sides instead of --sizes")
     ap.add_argument("--threads", type=ints, default=[1, 2])

@@ -147,6 +147,49 @@ def bin_work(R, atoms):
     return atoms * atoms * stencil
 
 
+def plot(rows, results, np_, every):
+    """Draws neighbor_scaling.png from the rows of neighbor_scaling.csv: ms per rebuild of both
+    styles against the size ratio, with the atom counts and bin's time over spacetree's."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("(matplotlib not available: no plot; run with /usr/bin/python3)")
+        return
+    timed = {style: {float(r["R"]): r for r in rows if r["style"] == style and r["ms_per_rebuild"] != ""}
+             for style in ("spacetree", "bin")}
+    fig, ax = plt.subplots(figsize=(7, 4.6))
+    for style, mk in (("spacetree", "o-"), ("bin", "s--")):
+        pts = sorted(timed[style].items())
+        if not pts:
+            continue
+        ax.plot([R for R, _ in pts], [float(r["ms_per_rebuild"]) for _, r in pts], mk, label="neighbor %s" % style)
+        if style == "spacetree":
+            for R, r in pts:
+                ax.annotate("%d atoms" % int(r["atoms"]), (R, float(r["ms_per_rebuild"])), textcoords="offset points",
+                            xytext=(4, -12), fontsize=7)
+    for R, r in sorted(timed["bin"].items()):  # the claim: bin / spacetree per rebuild
+        if R in timed["spacetree"]:
+            ratio = float(r["ms_per_rebuild"]) / float(timed["spacetree"][R]["ms_per_rebuild"])
+            ax.annotate("%.0fx" % ratio if ratio >= 10 else "%.1fx" % ratio, (R, float(r["ms_per_rebuild"])),
+                        textcoords="offset points", xytext=(-8, 8), fontsize=8, color="tab:orange")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    top = max(float(r["ms_per_rebuild"]) for style in timed for r in timed[style].values())
+    ax.set_ylim(top=4 * top)  # room for the labels above the highest point
+    ax.set_xlabel("size ratio R (big / small diameter)")
+    ax.set_ylabel("ms per neighbour-list rebuild")
+    ax.set_title("Bidisperse packs, %d rank(s), lists rebuilt every %d steps;\n"
+                 "orange labels: bin's time over spacetree's" % (np_, every), fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(loc="upper left")
+    fig.tight_layout()
+    png = os.path.join(results, "neighbor_scaling.png")
+    fig.savefig(png, dpi=120)
+    print("wrote %s" % png)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--R", type=float, nargs="+", default=[1, 10, 20, 50, 100])
@@ -168,7 +211,13 @@ def main():
     ap.add_argument("--workdir", default=os.path.join(HERE, "work"))
     ap.add_argument("--results", default=os.path.join(HERE, "results"))
     ap.add_argument("--timeout", type=float, default=1800.0, help="per LIGGGHTS run (s)")
+    ap.add_argument("--replot", action="store_true",
+                    help="only redraw the PNG from the stored CSV (give --np and --every as measured)")
     a = ap.parse_args()
+    if a.replot:
+        with open(os.path.join(a.results, "neighbor_scaling.csv"), newline="") as f:
+            plot(list(csv.DictReader(f)), a.results, a.np, a.every)
+        return 0
 
     if not os.path.isfile(a.exe):
         sys.exit("executable not found: %s (build first: scripts/build.sh)" % a.exe)
@@ -267,32 +316,7 @@ def main():
         print("%6s %8s %16s %16s %10s  %s" % (Rn, atoms, "%.3f" % s if s else "-", "%.3f" % bb if bb else "-",
                                                sp, nb))
 
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(6, 4.2))
-        for style, mk in (("spacetree", "o-"), ("bin", "s--")):
-            pts = [(float(r["R"]), float(r["ms_per_rebuild"])) for r in rows
-                   if r["style"] == style and r["ms_per_rebuild"] != ""]
-            if pts:
-                ax.plot([p[0] for p in pts], [p[1] for p in pts], mk, label="neighbor %s" % style)
-                for (x, y), r in zip(pts, [r for r in rows if r["style"] == style and r["ms_per_rebuild"] != ""]):
-                    ax.annotate("%d" % int(r["atoms"]), (x, y), textcoords="offset points", xytext=(4, -10),
-                                fontsize=7)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("size ratio R (big / small diameter)")
-        ax.set_ylabel("ms per neighbour-list rebuild")
-        ax.set_title("Bidisperse packs, %d rank(s), every %d check no" % (a.np, a.every))
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend()
-        fig.tight_layout()
-        png = os.path.join(a.results, "neighbor_scaling.png")
-        fig.savefig(png, dpi=120)
-        print("wrote %s" % png)
-    except ImportError:
-        print("(matplotlib not available: no plot; run with /usr/bin/python3)")
+    plot(rows, a.results, a.np, a.every)
     return 0
 
 

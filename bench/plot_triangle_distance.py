@@ -185,7 +185,7 @@ def plot_pipeline(source, styles):
     with open(source, newline="") as f:
         for row in csv.DictReader(f):
             series[(row["method"], int(row["newton_iterations"]))].append(row)
-    fig, (cost, ratio) = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig, (cost, ratio) = plt.subplots(1, 2, figsize=(12, 5.6))
     for (method, iterations), rows in sorted(series.items()):
         rows.sort(key=lambda r: int(r["triangles_per_particle"]))
         color, marker, dashes, steps, label = series_style(method, iterations, styles)
@@ -199,14 +199,16 @@ def plot_pipeline(source, styles):
         ax.set_xscale("log")
         ax.set_xlabel("triangles per particle")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
     cost.set_yscale("log")
     cost.set_ylabel("microseconds per particle pair (one core)")
     cost.set_title("Contact search (prechecks, pruning, method, merging)")
     ratio.axhline(4.0, color="gray", lw=0.8, ls=":")
     ratio.set_ylabel("speed-up over exact")
     ratio.set_title("Whole contact search: speed-up over the exact method")
-    fig.tight_layout()
+    # one legend below both panels (same style per series in each), so none covers a curve
+    lines, labels = cost.get_legend_handles_labels()
+    fig.legend(lines, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.15, 1, 1))
     target = source.rsplit(".", 1)[0] + ".png"
     fig.savefig(target, dpi=120)
     print(f"wrote {target}")

@@ -1,5 +1,5 @@
 /* spacetree-dem: pair style for triangulated rigid particles (thin layer over the core's
-   MeshContactFinder and contact force). */
+   MeshContactFinder and ContactModel). */
 
 #include "pair_trimesh.h"
 
@@ -17,7 +17,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "contact/MeshContact.h"
-#include "dynamics/ContactForce.h"
+#include "contact_model/ContactModel.h"
 #include "dynamics/RigidBody.h"
 #include "error.h"
 #include "fix_trimesh_state.h"
@@ -35,6 +35,7 @@
 
 using namespace LAMMPS_NS;
 namespace ct = spacetree::contact;
+namespace cm = spacetree::contact_model;
 namespace dy = spacetree::dynamics;
 
 namespace {
@@ -65,8 +66,9 @@ struct PairTrimeshModel {
   double stiffness = 0.0, damping = 0.0;        // eq. (1): S, D
   double friction = 0.0, sliding_damping = 0.0; // Coulomb mu, viscous gamma
   bool rotation = true;
-  std::unique_ptr<dy::NormalSpringDashpot> normal;
-  std::unique_ptr<dy::CoulombFriction> tangential;   // only with friction
+  cm::ContactModelSpec spec;                    // sub-models (core contact_model/)
+  cm::ContactParameters parameters;             // their coefficients (every type pair)
+  cm::ContactModelTable models;                 // one per type pair, built at init
 
   int threads = 0;                              // threads keyword: 0 = TBB default, 1 = serial
   std::unique_ptr<TrimeshParallelContacts> search;
@@ -183,10 +185,20 @@ void PairTrimesh::settings(int narg, char **arg)
              "must be <= %d Newton steps",stage1,stage2,kMaxNewtonSteps);
     error->all(FLERR,msg);
   }
-  model->normal.reset(new dy::NormalSpringDashpot(model->stiffness,model->damping));
-  model->tangential.reset();
-  if (model->friction > 0.0 && model->sliding_damping > 0.0)
-    model->tangential.reset(new dy::CoulombFriction(model->friction,model->sliding_damping));
+  // the contact model: eq. (1), plus viscous friction with `friction MU GAMMA`
+  model->spec = cm::ContactModelSpec();
+  model->parameters = cm::ContactParameters();
+  model->parameters.set("stiffness",model->stiffness);
+  model->parameters.set("damping",model->damping);
+  if (model->friction > 0.0 && model->sliding_damping > 0.0) {
+    model->spec.tangential = "viscous";
+    model->parameters.set("friction",model->friction);
+    model->parameters.set("slidingDamping",model->sliding_damping);
+  }
+  try { cm::ContactModel probe(model->spec,model->parameters); }
+  catch (const std::exception &e) {
+    error->all(FLERR,(std::string("Illegal pair_style trimesh command: ") + e.what()).c_str());
+  }
   // threads 0: TBB's default is every core this process may use; ranks that share a node share
   // those cores, so each takes its part (no oversubscription with several ranks per node)
   int threads = model->threads, on_node = 1, tbb_default = 0;
@@ -243,6 +255,13 @@ void PairTrimesh::init_style()
       templ = static_cast<FixTrimeshTemplate*>(modify->fix[i]);
     }
   if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
+  try {
+    const cm::ContactParameters &p = model->parameters;
+    model->models = cm::ContactModelTable(atom->ntypes,model->spec,[&p](int,int) { return p; });
+  } catch (const std::exception &e) {
+    error->all(FLERR,(std::string("Pair style trimesh: ") + e.what()).c_str());
+  }
+
   templ->set_halo(model->contact.epsilon);
   templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
   check_template_types_reach_trimesh(lmp,*templ);
@@ -295,6 +314,7 @@ void PairTrimesh::compute(int eflag, int vflag)
   double **quat = templ->state()->quat;
   const int nlocal = atom->nlocal;
   const bool rotation = model->rotation;
+  const double dt = update->dt;
 
   model->stats = ct::MeshContactStatistics();
   stat_max_penetration = 0.0;
@@ -355,16 +375,16 @@ void PairTrimesh::compute(int eflag, int vflag)
       const TrimeshTypeTemplate *ta = templ->type_template(type[a]), *tb = templ->type_template(type[b]);
       dy::RigidBody ba = body(*ta,pa,v[a],omega[a],rmass[a],rotation);
       dy::RigidBody bb = body(*tb,pb,v[b],omega[b],rmass[b],rotation);
+      const cm::ContactModel &law = model->models.at(type[a],type[b]);
       // i is owned; j only where newton off lets this rank add to it
       const bool a_owned = force->newton_pair || a < nlocal;
       const bool b_owned = force->newton_pair || b < nlocal;
 
       for (const ct::ContactPoint &c : contacts) {
         stat_max_penetration = std::max(stat_max_penetration,c.penetration);
-        const dy::ContactKinematics k = dy::contactKinematics(ba,bb,c);
-        const double fn = model->normal->normalForce(k);
-        Eigen::Vector3d fa = -fn * k.normal;     // on the first body; the second gets -fa
-        if (model->tangential) fa += model->tangential->forceOnFirst(k,fn);
+        const cm::Contact k = cm::makeContact(ba,bb,c.point,c.normal,c.penetration);
+        // on the first body; the second gets -fa
+        const Eigen::Vector3d fa = law.evaluate(k,nullptr,dt).forceOnFirst;
         if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
         if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
         if (rotation) {

@@ -1,5 +1,5 @@
 /* spacetree-dem: contacts of triangulated rigid particles (paper §3, §6.2; core:
-   src/core/contact/MeshContact, src/core/dynamics/ContactForce).
+   src/core/contact/MeshContact, src/core/contact_model/ContactModel).
 
      pair_style trimesh eps E stiffness S damping D [method exact|penalty|hybrid]
                         [iterations K] [continuation C] [friction MU GAMMA] [rotation yes|no]
@@ -9,7 +9,7 @@
    Candidate pairs come from a granular half list (newton off; `neighbor ... bin` or
    `neighbor ... spacetree`) built on radius = bounding radius + E. Per pair: bounding-sphere
    precheck |xi - xj| < Ri + Rj + 2E, then the core's triangle checks; a contact where two
-   surfaces are closer than 2E, force per eq. (1) (core ContactForce): spring on the halo
+   surfaces are closer than 2E, force per eq. (1) (core ContactModel): spring on the halo
    overlap plus damping while approaching; Coulomb friction only with `friction MU`, torques
    and angular velocities only with `rotation yes` (default). Obstacles (fixed template
    types) have infinite mass. Statistics: compute trimesh/contacts. `threads N`: the triangle

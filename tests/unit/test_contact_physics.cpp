@@ -1,4 +1,4 @@
-// Physics of the core pieces together (RigidBody + MeshContact + ContactForce) in a tiny
+// Physics of the core pieces together (RigidBody + MeshContact + ContactModel) in a tiny
 // driver, no LIGGGHTS: symplectic Euler (forces at x_n, then v_{n+1}, then x_{n+1}, the order
 // of LIGGGHTS' nve integrators), all pairs checked every step.
 //   - two cubes head-on (vertex on face, one contact point): restitution of the
@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "contact/MeshContact.h"
+#include "contact_model/ContactModel.h"
+#include "contact_model/DampingApproach.h"
 #include "dynamics/ContactForce.h"
 #include "dynamics/RigidBody.h"
 #include "geometry/DentedSphere.h"
@@ -25,6 +27,10 @@
 
 using namespace spacetree;
 using namespace spacetree::dynamics;
+using contact_model::ContactModel;
+using contact_model::ContactModelSpec;
+using contact_model::ContactParameters;
+using contact_model::springDashpotRestitution;
 using contact::ContactPoint;
 using contact::MeshContactFinder;
 using contact::MeshContactOptions;
@@ -47,9 +53,9 @@ struct StepReport {
 
 class Driver {
  public:
-  Driver(MeshContactOptions options, NormalSpringDashpot normal, Vector3d gravity,
-         const CoulombFriction* friction = nullptr)
-      : finder_(std::move(options)), normal_(normal), gravity_(gravity), friction_(friction) {}
+  // The model is evaluated for every contact point (no history: the models here keep none).
+  Driver(MeshContactOptions options, const ContactModel& model, Vector3d gravity)
+      : finder_(std::move(options)), model_(model), gravity_(gravity) {}
 
   StepReport step(std::vector<Particle>& particles, double dt) {
     StepReport report;
@@ -64,9 +70,9 @@ class Driver {
         finder_.find(*particles[i].shape, Pose{a.position, a.orientation}, *particles[j].shape,
                      Pose{b.position, b.orientation}, contacts);
         for (const ContactPoint& c : contacts) {
-          const ContactKinematics k = contactKinematics(a, b, c);
-          Vector3d force = normal_.forceOnFirst(k);
-          if (friction_) force += friction_->forceOnFirst(k, normal_.normalForce(k));
+          const contact_model::Contact k =
+              contact_model::makeContact(a, b, c.point, c.normal, c.penetration);
+          const Vector3d force = model_.evaluate(k, nullptr, dt).forceOnFirst;
           applyContactForce(a, b, c.point, force, loads[i], loads[j]);
           report.largestPenetration = std::max(report.largestPenetration, c.penetration);
         }
@@ -83,10 +89,24 @@ class Driver {
 
  private:
   MeshContactFinder finder_;
-  NormalSpringDashpot normal_;
+  const ContactModel& model_;
   Vector3d gravity_;
-  const CoulombFriction* friction_;  // optional: only scenes that ask for friction pay for it
 };
+
+// Paper eq. (1): halo spring S and approach damping D; with friction MU GAMMA the viscous
+// tangential model (only scenes that ask for friction pay for it).
+ContactModel eq1Model(double spring, double damping, double mu = -1.0, double gamma = 0.0) {
+  ContactModelSpec spec;
+  ContactParameters p;
+  p.set("stiffness", spring);
+  p.set("damping", damping);
+  if (mu >= 0.0) {
+    spec.tangential = "viscous";
+    p.set("friction", mu);
+    p.set("slidingDamping", gamma);
+  }
+  return ContactModel(spec, p);
+}
 
 MeshContactOptions contactOptions(double eps) {
   MeshContactOptions o;
@@ -106,7 +126,8 @@ double headOnRestitution(double zeta, double densityA, double densityB, bool fix
   const double a = 0.1, eps = 1e-3, spring = 1e6;
   const RigidShape cube = RigidShape::fromMesh(geometry::boxMesh(Vector3d(a, a, a)));
   const double damping = zeta * std::sqrt(spring / 2.0);
-  Driver driver(contactOptions(eps), NormalSpringDashpot(spring, damping), Vector3d::Zero());
+  const ContactModel model = eq1Model(spring, damping);
+  Driver driver(contactOptions(eps), model, Vector3d::Zero());
   const double vRelative = 0.4;
   std::vector<Particle> p(2);
   p[0] = {&cube, RigidBody::free(cube.mass(densityA), cube.principalInertia(densityA),
@@ -169,7 +190,8 @@ TEST(ContactPhysics, CubeDroppedOnItsEdgeRotatesTowardsItsCentreOfMass) {
     const double offset = 0.0 - edgeX;  // centre at x = 0
     ASSERT_GT(std::abs(offset), 0.01);
     const double spring = 2e5, damping = 0.3 * std::sqrt(spring / 2);
-    Driver driver(contactOptions(eps), NormalSpringDashpot(spring, damping), Vector3d(0, 0, -9.81));
+    const ContactModel model = eq1Model(spring, damping);
+    Driver driver(contactOptions(eps), model, Vector3d(0, 0, -9.81));
     std::vector<Particle> p(2);
     p[0] = {&cube, RigidBody::free(cube.mass(2500), cube.principalInertia(2500),
                                    Vector3d(0, 0, -lowest + 2 * eps + 1e-3), q)};
@@ -203,8 +225,8 @@ TEST(ContactPhysics, SlidingCubeDeceleratesAtMuG) {
   const RigidShape cube = RigidShape::fromMesh(geometry::boxMesh(Vector3d(a, a, a)));
   const RigidShape floorShape = RigidShape::fromMesh(geometry::boxMesh(Vector3d(2.0, 2.0, 0.1)));
   const double mass = cube.mass(2500), spring = 2e5, damping = 0.7 * std::sqrt(spring / 2);
-  const CoulombFriction friction(mu, 1e4);
-  Driver driver(contactOptions(eps), NormalSpringDashpot(spring, damping), Vector3d(0, 0, -g), &friction);
+  const ContactModel model = eq1Model(spring, damping, mu, 1e4);
+  Driver driver(contactOptions(eps), model, Vector3d(0, 0, -g));
   std::vector<Particle> p(2);
   // Settled height: halo overlap of mg / S shared by the bottom contacts; start 2 eps above.
   p[0] = {&cube, RigidBody::free(mass, cube.principalInertia(2500), Vector3d(0, 0, a / 2 + 2 * eps - 1e-5))};
@@ -234,7 +256,8 @@ TEST(ContactPhysics, DentedSphereComesToRestOnAFixedFloor) {
   const RigidShape floorShape = RigidShape::fromMesh(geometry::boxMesh(Vector3d(0.1, 0.1, 0.02)));
   const double eps = 1e-4, spring = 1e5;
   const double damping = 0.5 * std::sqrt(spring / 2);
-  Driver driver(contactOptions(eps), NormalSpringDashpot(spring, damping), Vector3d(0, 0, -9.81));
+  const ContactModel model = eq1Model(spring, damping);
+  Driver driver(contactOptions(eps), model, Vector3d(0, 0, -9.81));
   std::vector<Particle> p(2);
   const Quaterniond q(Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()));
   double lowest = 1e9;

@@ -182,7 +182,38 @@ bool isLocalMinimum(const geometry::RigidShape& shape, int t, const Vector3d& p,
   return true;  // inside the face: u is its normal
 }
 
+// Calls body(i) for the given candidate triangles of `shape`, or for all of them (nullptr).
+template <class Body>
+void forEachTriangle(const geometry::RigidShape& shape, const std::vector<int>* candidates,
+                     Body&& body) {
+  if (candidates)
+    for (int i : *candidates) body(std::size_t(i));
+  else
+    for (std::size_t i = 0; i < shape.triangleCount(); ++i) body(i);
+}
+
 }  // namespace
+
+// Second body in the first body's frame: x_1 = rotation * x_2 + shift.
+struct MeshContactFinder::PairFrame {
+  PairFrame(const geometry::RigidShape& first, const Pose& firstPose,
+            const geometry::RigidShape& second, const Pose& secondPose, double contactDistance)
+      : contactDistance(contactDistance),
+        firstRotation(firstPose.orientation.toRotationMatrix()),
+        rotation(firstRotation.transpose() * secondPose.orientation.toRotationMatrix()),
+        inverseRotation(rotation.transpose()),
+        shift(firstRotation.transpose() * (secondPose.position - firstPose.position)),
+        firstCentreInSecond(-(inverseRotation * shift)),
+        sphereGap(shift.norm() - first.boundingRadius - second.boundingRadius) {}
+
+  double contactDistance;        // 2 eps
+  Matrix3d firstRotation;        // first body frame -> world
+  Matrix3d rotation;             // second body frame -> first body frame
+  Matrix3d inverseRotation;      // first body frame -> second body frame
+  Vector3d shift;                // the second centre in the first frame
+  Vector3d firstCentreInSecond;  // the first centre in the second frame
+  double sphereGap;              // centre distance - both bounding radii
+};
 
 std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pose& firstPose,
                                     const geometry::RigidShape& second, const Pose& secondPose,
@@ -190,78 +221,89 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
                                     MeshContactStatistics* statistics) {
   const double eps = options_.epsilon;
   if (!(eps > 0.0)) throw std::invalid_argument("MeshContactFinder: epsilon must be > 0");
-  const double contactDistance = 2.0 * eps;
   MeshContactStatistics counts;
   counts.bodyPairs = 1;
+  const PairFrame frame(first, firstPose, second, secondPose, 2.0 * eps);
+  const std::size_t begin = contacts.size();
+  if (!rejectBodyPair(first, firstPose, second, secondPose, frame, counts)) {
+    selectNearTriangles(first, second, frame);
+    pairNearTriangles(first, second, frame, counts);
+    computeDistances(frame.contactDistance, counts);
+    collectRawContacts(first, second, frame, counts);
+    mergeDuplicates(first, second, contacts, begin);
+    // To the world frame.
+    for (std::size_t k = begin; k < contacts.size(); ++k) {
+      contacts[k].point = frame.firstRotation * contacts[k].point + firstPose.position;
+      contacts[k].normal = frame.firstRotation * contacts[k].normal;
+    }
+  }
+  counts.contacts = contacts.size() - begin;
+  if (statistics) *statistics += counts;
+  return counts.contacts;
+}
 
-  // Second body in the first body's frame: x_1 = rotation * x_2 + shift.
-  const Matrix3d firstRotation = firstPose.orientation.toRotationMatrix();
-  const Matrix3d rotation =
-      firstRotation.transpose() * secondPose.orientation.toRotationMatrix();
-  const Vector3d shift = firstRotation.transpose() * (secondPose.position - firstPose.position);
-  const double centreDistance = shift.norm();
-  const double sphereGap = centreDistance - first.boundingRadius - second.boundingRadius;
-  const auto finish = [&](std::size_t appended) {
-    counts.contacts = appended;
-    if (statistics) *statistics += counts;
-    return appended;
-  };
-  if (!(sphereGap < contactDistance)) {
+bool MeshContactFinder::rejectBodyPair(const geometry::RigidShape& first, const Pose& firstPose,
+                                       const geometry::RigidShape& second,
+                                       const Pose& secondPose, const PairFrame& frame,
+                                       MeshContactStatistics& counts) const {
+  if (!(frame.sphereGap < frame.contactDistance)) {
     ++counts.boundingSphereRejections;
-    return finish(0);
+    return true;
   }
   // Each body's bounding sphere against the other's bounding box (a grain far from a slab
   // obstacle whose bounding sphere holds it).
-  const Matrix3d inverseRotation = rotation.transpose();  // first frame -> second frame
-  const Vector3d firstCentreInSecond = -(inverseRotation * shift);
   if (options_.triangleCulling &&
-      (clearOfBox(shift, first, second.boundingRadius + contactDistance) ||
-       clearOfBox(firstCentreInSecond, second, first.boundingRadius + contactDistance))) {
+      (clearOfBox(frame.shift, first, second.boundingRadius + frame.contactDistance) ||
+       clearOfBox(frame.firstCentreInSecond, second,
+                  first.boundingRadius + frame.contactDistance))) {
     ++counts.boundingBoxRejections;
-    return finish(0);
+    return true;
   }
-  if (options_.approachPrecheck && !options_.approachPrecheck(firstPose, secondPose, sphereGap)) {
+  if (options_.approachPrecheck &&
+      !options_.approachPrecheck(firstPose, secondPose, frame.sphereGap)) {
     ++counts.approachRejections;
-    return finish(0);
+    return true;
   }
+  return false;
+}
 
-  // Triangles of each body whose bounding sphere reaches the other body's bounding sphere.
-  // With an index: its candidates (a superset), ascending, through the same test as the loop
-  // over all triangles. The second body's query point is the first's centre in the second's
-  // frame, -rotation^T shift (rotation orthogonal to rounding; else the plain loop).
-  const auto candidatesOf = [&](const geometry::RigidShape& shape, const Vector3d& q,
-                                double radius) -> const std::vector<int>* {
-    const bool indexed = shape.triangleCount() >= kTriangleIndexMinimum ||
-                         shape.boundingRadius > kTriangleIndexRadiusRatio * radius;
-    if (!options_.triangleIndex || !indexed ||
-        shape.triangleIndex.size() != shape.triangleCount())
-      return nullptr;
-    candidates_.clear();
-    shape.triangleIndex.forEachCandidate(q, radius, [&](int i) { candidates_.push_back(i); });
-    std::sort(candidates_.begin(), candidates_.end());
-    return &candidates_;
-  };
-  const auto forEachTriangle = [&](const geometry::RigidShape& shape,
-                                   const std::vector<int>* candidates, auto&& body) {
-    if (candidates)
-      for (int i : *candidates) body(std::size_t(i));
-    else
-      for (std::size_t i = 0; i < shape.triangleCount(); ++i) body(i);
-  };
-  // Culls beyond the bounding spheres (options_.triangleCulling): a triangle must also reach
-  // the other body's box, and a triangle larger than the other body must reach its bounding
-  // sphere by its true distance (a coarse obstacle's big faces).
+// With an index: its candidates (a superset), ascending, through the same test as the loop
+// over all triangles.
+const std::vector<int>* MeshContactFinder::indexCandidates(const geometry::RigidShape& shape,
+                                                           const Vector3d& q, double radius) {
+  const bool indexed = shape.triangleCount() >= kTriangleIndexMinimum ||
+                       shape.boundingRadius > kTriangleIndexRadiusRatio * radius;
+  if (!options_.triangleIndex || !indexed || shape.triangleIndex.size() != shape.triangleCount())
+    return nullptr;
+  candidates_.clear();
+  shape.triangleIndex.forEachCandidate(q, radius, [&](int i) { candidates_.push_back(i); });
+  std::sort(candidates_.begin(), candidates_.end());
+  return &candidates_;
+}
+
+// Triangles of each body whose bounding sphere reaches the other body's bounding sphere. The
+// second body's index query point is the first's centre in the second's frame,
+// -rotation^T shift (rotation orthogonal to rounding; else the plain loop). Culls beyond the
+// bounding spheres (options_.triangleCulling): a triangle must also reach the other body's box,
+// and a triangle larger than the other body must reach its bounding sphere by its true
+// distance (a coarse obstacle's big faces).
+void MeshContactFinder::selectNearTriangles(const geometry::RigidShape& first,
+                                            const geometry::RigidShape& second,
+                                            const PairFrame& frame) {
+  const double contactDistance = frame.contactDistance;
+  const Matrix3d& rotation = frame.rotation;
+  const Vector3d& shift = frame.shift;
   const bool cull = options_.triangleCulling;
   nearFirst_.clear();
   nearSecond_.clear();
-  forEachTriangle(first, candidatesOf(first, shift, second.boundingRadius + contactDistance),
+  forEachTriangle(first, indexCandidates(first, shift, second.boundingRadius + contactDistance),
                   [&](std::size_t i) {
     const double r = first.triangleRadii[i];
     const double reach = r + second.boundingRadius + contactDistance;
     const Vector3d& c = first.triangleCentres[i];
     if (!((c - shift).squaredNorm() < reach * reach)) return;
     if (cull) {
-      if (clearOfBox(inverseRotation * (c - shift), second, r + contactDistance)) return;
+      if (clearOfBox(frame.inverseRotation * (c - shift), second, r + contactDistance)) return;
       if (r > second.boundingRadius &&
           clearOfPoint(shift, first.bodyTriangles[i], r, second.boundingRadius + contactDistance))
         return;
@@ -272,7 +314,8 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
   const bool orthogonal =
       (rotation.transpose() * rotation - Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-12;
   const std::vector<int>* secondCandidates =
-      orthogonal ? candidatesOf(second, firstCentreInSecond, first.boundingRadius + contactDistance)
+      orthogonal ? indexCandidates(second, frame.firstCentreInSecond,
+                                   first.boundingRadius + contactDistance)
                  : nullptr;
   forEachTriangle(second, secondCandidates, [&](std::size_t j) {
     const double r = second.triangleRadii[j];
@@ -282,7 +325,7 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
     if (cull) {
       if (clearOfBox(centre, first, r + contactDistance)) return;
       if (r > first.boundingRadius &&
-          clearOfPoint(firstCentreInSecond, second.bodyTriangles[j], r,
+          clearOfPoint(frame.firstCentreInSecond, second.bodyTriangles[j], r,
                        first.boundingRadius + contactDistance))
         return;
     }
@@ -295,6 +338,15 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
     secondTriangles_.emplace_back(rotation * t[0] + shift, rotation * t[1] + shift,
                                   rotation * t[2] + shift);
   }
+}
+
+// Every near triangle of the first body with every near triangle of the second whose spheres
+// come within 2 eps, and (culling) each triangle's sphere within 2 eps of the other triangle.
+void MeshContactFinder::pairNearTriangles(const geometry::RigidShape& first,
+                                          const geometry::RigidShape& second,
+                                          const PairFrame& frame, MeshContactStatistics& counts) {
+  const double contactDistance = frame.contactDistance;
+  const bool cull = options_.triangleCulling;
   pairFirst_.clear();
   pairSecond_.clear();
   pairIndex_.clear();
@@ -321,10 +373,12 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
       pairIndex_.push_back({i, int(k)});
     }
   }
-  const std::size_t pairs = pairFirst_.size();
-  counts.trianglePairsChecked = pairs;
-  counts.trianglePairsPruned = first.triangleCount() * second.triangleCount() - pairs;
+  counts.trianglePairsChecked = pairFirst_.size();
+  counts.trianglePairsPruned = first.triangleCount() * second.triangleCount() - pairFirst_.size();
+}
 
+void MeshContactFinder::computeDistances(double contactDistance, MeshContactStatistics& counts) {
+  const std::size_t pairs = pairFirst_.size();
   results_.resize(pairs);
   switch (options_.method) {
     case TriangleDistanceMethod::Exact:
@@ -351,12 +405,17 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
       break;
     }
   }
+}
 
-  // Raw contacts, in the first body's frame.
+void MeshContactFinder::collectRawContacts(const geometry::RigidShape& first,
+                                           const geometry::RigidShape& second,
+                                           const PairFrame& frame, MeshContactStatistics& counts) {
+  const double eps = options_.epsilon;
+  const std::size_t pairs = pairFirst_.size();
   raw_.clear();
   for (std::size_t p = 0; p < pairs; ++p) {
     const geometry::TriangleDistanceResult& r = results_[p];
-    if (!(r.distance < contactDistance)) continue;
+    if (!(r.distance < frame.contactDistance)) continue;
     ContactPoint c;
     c.point = 0.5 * (r.pointOnFirst + r.pointOnSecond);
     c.distance = r.distance;
@@ -370,24 +429,28 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
       const double tolerance = kDirectionTolerance * h;
       if (!isLocalMinimum(first, c.firstTriangle, r.pointOnFirst, u, Matrix3d::Identity(),
                           Vector3d::Zero(), tolerance) ||
-          !isLocalMinimum(second, c.secondTriangle, r.pointOnSecond, -u, rotation, shift,
-                          tolerance)) {
+          !isLocalMinimum(second, c.secondTriangle, r.pointOnSecond, -u, frame.rotation,
+                          frame.shift, tolerance)) {
         ++counts.nonMinimumContacts;
         continue;
       }
     }
     if (!(r.distance > kDirectionTolerance * h)) {
       direction = touchingNormal(r, pairFirst_[p], pairSecond_[p], kDirectionTolerance * h);
-      if (!(direction.squaredNorm() > 1e-12)) direction = shift;
+      if (!(direction.squaredNorm() > 1e-12)) direction = frame.shift;
       if (!(direction.squaredNorm() > 0.0)) direction = Vector3d::UnitX();
     }
     c.normal = direction.normalized();
     raw_.push_back(c);
   }
   counts.rawContacts = raw_.size();
+}
 
-  // De-duplication: penetration-weighted running means of close contacts with close normals.
-  const std::size_t begin = contacts.size();
+// Penetration-weighted running means of close contacts with close normals.
+void MeshContactFinder::mergeDuplicates(const geometry::RigidShape& first,
+                                        const geometry::RigidShape& second,
+                                        std::vector<ContactPoint>& contacts, std::size_t begin) {
+  const double eps = options_.epsilon;
   const double mergeDistance = std::min(first.minimumEdgeLength, second.minimumEdgeLength);
   std::vector<Vector3d>& normalSums = normalSums_;  // weighted sums of merged unit normals
   std::vector<double>& weights = weights_;          // sums of merged penetrations
@@ -422,12 +485,6 @@ std::size_t MeshContactFinder::find(const geometry::RigidShape& first, const Pos
       weights.push_back(c.penetration);
     }
   }
-  // To the world frame.
-  for (std::size_t k = begin; k < contacts.size(); ++k) {
-    contacts[k].point = firstRotation * contacts[k].point + firstPose.position;
-    contacts[k].normal = firstRotation * contacts[k].normal;
-  }
-  return finish(contacts.size() - begin);
 }
 
 }  // namespace spacetree::contact

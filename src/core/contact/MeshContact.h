@@ -184,6 +184,37 @@ class MeshContactFinder {
                    std::vector<ContactPoint>& contacts, MeshContactStatistics* statistics = nullptr);
 
  private:
+  // The two poses as the phases below use them (defined in MeshContact.cpp).
+  struct PairFrame;
+
+  // One function per phase of the pipeline above; each works on the scratch buffers below.
+  // (1)-(2): whether the body pair is rejected whole (bounding spheres, bounding boxes, the
+  // approach precheck hook); counts the rejection.
+  bool rejectBodyPair(const geometry::RigidShape& first, const Pose& firstPose,
+                      const geometry::RigidShape& second, const Pose& secondPose,
+                      const PairFrame& frame, MeshContactStatistics& counts) const;
+  // (3a): the triangles of each body that reach the other body -> nearFirst_, nearSecond_ (with
+  // secondCentres_ and secondTriangles_, the second's in the first frame).
+  void selectNearTriangles(const geometry::RigidShape& first, const geometry::RigidShape& second,
+                           const PairFrame& frame);
+  // The TriangleBvh candidates of `shape` within radius of q (ascending), or nullptr when the
+  // shape is pruned by the loop over all its triangles.
+  const std::vector<int>* indexCandidates(const geometry::RigidShape& shape,
+                                          const Eigen::Vector3d& q, double radius);
+  // (3b): the pairs of near triangles that may come within 2 eps -> pairFirst_, pairSecond_,
+  // pairIndex_; counts the pairs checked and pruned.
+  void pairNearTriangles(const geometry::RigidShape& first, const geometry::RigidShape& second,
+                         const PairFrame& frame, MeshContactStatistics& counts);
+  // (4): the chosen distance method on all pairs at once -> results_.
+  void computeDistances(double contactDistance, MeshContactStatistics& counts);
+  // (5), (5b): the pairs closer than 2 eps that are local distance minima, as contacts in the
+  // first body's frame -> raw_.
+  void collectRawContacts(const geometry::RigidShape& first, const geometry::RigidShape& second,
+                          const PairFrame& frame, MeshContactStatistics& counts);
+  // (6): raw_ merged into the contacts appended to `contacts` from index begin on.
+  void mergeDuplicates(const geometry::RigidShape& first, const geometry::RigidShape& second,
+                       std::vector<ContactPoint>& contacts, std::size_t begin);
+
   MeshContactOptions options_;
   std::vector<int> nearFirst_, nearSecond_, candidates_;
   std::vector<Eigen::Vector3d> secondCentres_;

@@ -195,6 +195,7 @@ def main():
         check(max(e) <= e[0] + 1e-9 * abs(e[0]), "mechanical energy never exceeds its start (damped column)")
         comp = [n_stack * d - z for z in col("v_ztop")]
         worst = max(abs(c - comp_exact) for c in comp)
+        print("  column height n d %.17g m, closed-form top compression %.17g m" % (n_stack * d, comp_exact))
         print("  %d steps (%.3g s): top compression %.6e .. %.6e m (closed form %.6e), final KE %.3g J, %g contacts"
               % (steps, col("Time")[-1], min(comp), max(comp), comp_exact, col("KinEng")[-1], col("f_dtv[9]")[-1]))
         check(steps == nsteps, "held for %d steps" % nsteps)
