@@ -356,6 +356,8 @@ def plot(results):
         ax.set_xticklabels(["%s / bare" % n for n in inst], fontsize=8)
         ax.set_ylim(0.9, max(1.15, 1.03 * max(instructions[n] for n in inst)))
         ax.axhline(1.0, color="k", lw=0.8)
+        ax.axhspan(0.98, 1.02, color="0.85", zorder=0, label="within 2 %")
+        ax.legend(fontsize=8, loc="upper left")
         ax.set_ylabel("instructions in the time loop / bare")
         ax.set_title("work (callgrind instruction count)", fontsize=9)
     else:

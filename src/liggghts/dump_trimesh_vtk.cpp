@@ -16,7 +16,6 @@
 #include "error.h"
 #include "fix_trimesh_state.h"
 #include "fix_trimesh_template.h"
-#include "modify.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -38,10 +37,7 @@ DumpTrimeshVtk::DumpTrimeshVtk(LAMMPS *lmp, int narg, char **arg) :
 
 void DumpTrimeshVtk::init_style()
 {
-  templ = NULL;
-  for (int i = 0; i < modify->nfix; i++)
-    if (strcmp(modify->fix[i]->style,"trimesh/template") == 0)
-      templ = static_cast<FixTrimeshTemplate*>(modify->fix[i]);
+  templ = FixTrimeshTemplate::find(lmp,"Dump trimesh/vtk");
   if (!templ) error->all(FLERR,"Dump trimesh/vtk requires fix trimesh/template");
 }
 

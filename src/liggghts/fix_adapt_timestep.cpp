@@ -18,6 +18,7 @@
 #include "neigh_spacetree.h"
 #include "neighbor.h"
 #include "pair_gran.h"
+#include "pair_trimesh.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
@@ -49,7 +50,7 @@ double positive(Force *force, Error *error, const char *keyword, const char *val
 }
 
 FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), dtmin_set(false), dtmax_set(false), dtmax_captured(false), veto_on(true),
+  Fix(lmp, narg, arg), dtmin_set(false), dtmax_set(false), dtmax_captured(false), eps_set(false), veto_on(true),
   rollback_on(false), safety(0.8), eps(0.0), list(NULL), history(NULL),
   vetoed_steps(0), floored_steps(0), critical_last(0), rollbacks(0), rollbacks_failed(0),
   rollbacks_rebuilt(0),
@@ -94,6 +95,7 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
     } else if (strcmp(arg[iarg],"eps") == 0) {
       eps = force->numeric(FLERR,arg[iarg+1]);
       if (!(eps >= 0.0)) error->all(FLERR,"Illegal fix adapt/timestep command: eps must be >= 0");
+      eps_set = true;
     } else if (strcmp(arg[iarg],"veto") == 0) {
       veto_on = yes_no(error,"veto",arg[iarg+1]);
     } else if (strcmp(arg[iarg],"safety") == 0) {
@@ -144,8 +146,6 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   if (policy.impactSpeed > 0.0 && !dtrest_set) policy.dtRest = 0.1*policy.contactTime;
   if (dtrest_set && policy.dtRest < policy.dtContact)
     error->all(FLERR,"Illegal fix adapt/timestep command: dtrest is below dtcontact");
-  if (rollback_on && !(eps > 0.0))
-    error->all(FLERR,"Illegal fix adapt/timestep command: rollback yes needs eps > 0 (the allowed overlap)");
   if (penetration_set && !rollback_on)
     error->all(FLERR,"Illegal fix adapt/timestep command: penetration is a rollback setting (add rollback yes)");
 
@@ -155,7 +155,7 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   scalar_flag = 1;
   vector_flag = 1;
   size_vector = 11;
-  comm_forward = 3;   // accelerations to ghosts (vimpact)
+  comm_forward = 6;   // accelerations (vimpact) or velocities and angular velocities to ghosts
   global_freq = 1;
   extscalar = 0;
   extvector = 0;
@@ -188,17 +188,33 @@ void FixAdaptTimestep::init()
     error->all(FLERR,"Fix adapt/timestep: dtmin exceeds dtmax");
   if (policy.dtContact > policy.dtMax && comm->me == 0)
     error->warning(FLERR,"Fix adapt/timestep: dtcontact exceeds dtmax and has no effect");
-  // Overlaps (dtcontact, rollback) are contacts only for sphere pair styles (pair gran). Other
-  // styles on a granular list (pair trimesh: radius = bounding radius + halo) get the veto over
-  // their bounding spheres, which is conservative: it acts before the bounding spheres meet.
+  // Overlaps (dtcontact, rollback) are contacts for sphere pair styles (pair gran: the spheres'
+  // overlap) and for pair trimesh (the halo penetration eps_h - d/2 of its contact points; the
+  // veto and the approach test measure the surface distance, TimestepTrimeshScan). Other styles
+  // on a granular list get the veto over the list's spheres only.
+  PairTrimesh *trimesh = force->pair ? dynamic_cast<PairTrimesh*>(force->pair) : NULL;
   const bool sphere_contacts = force->pair && dynamic_cast<PairGran*>(force->pair);
-  if (!sphere_contacts && (rollback_on || policy.dtContact > 0.0 || eps > 0.0))
-    error->all(FLERR,"Fix adapt/timestep eps, rollback and dtcontact need a granular sphere pair style "
-               "(pair_style gran ...)");
+  if (!sphere_contacts && !trimesh && (rollback_on || policy.dtContact > 0.0 || eps > 0.0))
+    error->all(FLERR,"Fix adapt/timestep eps, rollback and dtcontact need pair_style gran ... or "
+               "pair_style trimesh (their overlaps are contacts)");
+  if (trimesh) {
+    // eps is the halo penetration allowed, at most the halo (beyond it the rigid surfaces meet)
+    const double halo = trimesh->contact_options().epsilon;
+    if (!eps_set) eps = halo;
+    else if (!(eps > 0.0) || eps > halo) {
+      char msg[256];
+      snprintf(msg,sizeof(msg),"Fix adapt/timestep eps %g with pair_style trimesh: the allowed halo "
+               "penetration must be > 0 and at most the pair style's eps %g",eps,halo);
+      error->all(FLERR,msg);
+    }
+  }
+  pair_scan.use_trimesh(trimesh,eps,safety);
+  if (rollback_on && !(eps > 0.0))
+    error->all(FLERR,"Illegal fix adapt/timestep command: rollback yes needs eps > 0 (the allowed overlap)");
   if (!force->pair && veto_on)
     error->all(FLERR,"Fix adapt/timestep veto needs a pair style with a granular neighbour list "
                "(or use veto no)");
-  if (sphere_contacts || (force->pair && veto_on))
+  if (sphere_contacts || trimesh || (force->pair && veto_on))
     request_granular_list_copy(neighbor,this,GranularListUser::Fix);
   if (update->whichflag == 1 && strncmp(update->integrate_style,"verlet",6) != 0)
     error->all(FLERR,"Fix adapt/timestep needs run_style verlet");
@@ -215,15 +231,20 @@ void FixAdaptTimestep::init()
   }
 }
 
-/* What a rollback restores: the atoms (with the primitive walls' tangential histories in their
-   records), the pair style's contact history, and the state of the pair style and of any fix that
-   keeps state of its own and says so by implementing spacetree::TimestepStateSource. */
+/* What a rollback restores: the atoms (with the primitive walls' tangential histories and the
+   per-atom values of fixes that implement TimestepAtomValues, e.g. the orientation and angular
+   momentum of triangulated particles, in their records), the pair style's contact history, and
+   the state of the pair style and of any fix that keeps state of its own and says so by
+   implementing spacetree::TimestepStateSource. */
 
 void FixAdaptTimestep::collect_state_sources()
 {
   wall_histories = TimestepWallHistory::collect(lmp);
   atom_state.clear_values();
   for (const auto &w : wall_histories) atom_state.add_values(w.get());
+  // per-atom state of fixes (fix trimesh/state: orientation and angular momentum) in the records
+  for (int i = 0; i < modify->nfix; i++)
+    if (TimestepAtomValues *v = dynamic_cast<TimestepAtomValues*>(modify->fix[i])) atom_state.add_values(v);
   snapshot.clear();
   snapshot.add(&atom_state);
   snapshot.add(&contact_history);

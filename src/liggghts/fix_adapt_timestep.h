@@ -5,7 +5,8 @@
    and, if an approaching pair of the granular neighbour list would penetrate deeper than eps
    within dt, dt <- safety * (gap + eps) / closing speed (smallest over all such pairs), never
    below dtmin. With rollback yes, a step after which some overlap exceeds `penetration` * eps
-   is undone and redone with half the step.
+   is undone and redone with half the step. With pair_style trimesh the pairs are judged by the
+   gap between their surfaces and eps is the allowed halo penetration (timestep_trimesh_scan.h).
 
      fix ID group adapt/timestep creep C [dtmin X] [dtmax X] [dtcontact X] [eps X] [veto yes|no]
          [vimpact V tcontact T [dtrest X]] [safety S] [rollback yes|no] [penetration F] [retries N] [file F]
@@ -70,7 +71,7 @@ class FixAdaptTimestep : public Fix {
 
   spacetree::TimestepPolicy policy;
   spacetree::RollbackPolicy rollback;
-  bool dtmin_set, dtmax_set, dtmax_captured, veto_on, rollback_on;
+  bool dtmin_set, dtmax_set, dtmax_captured, eps_set, veto_on, rollback_on;
   double safety, eps;
   class NeighList *list;
   FILE *history;

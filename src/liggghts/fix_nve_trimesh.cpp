@@ -2,7 +2,6 @@
 
 #include "fix_nve_trimesh.h"
 
-#include <cstring>
 
 #include "atom.h"
 #include "dynamics/RigidBody.h"
@@ -10,7 +9,6 @@
 #include "fix_trimesh_state.h"
 #include "fix_trimesh_template.h"
 #include "force.h"
-#include "modify.h"
 #include "update.h"
 
 #include <mpi.h>
@@ -68,12 +66,7 @@ int FixNVETrimesh::setmask()
 
 void FixNVETrimesh::init()
 {
-  templ = NULL;
-  for (int i = 0; i < modify->nfix; i++)
-    if (strcmp(modify->fix[i]->style,"trimesh/template") == 0) {
-      if (templ) error->all(FLERR,"Fix nve/trimesh: more than one fix trimesh/template");
-      templ = static_cast<FixTrimeshTemplate*>(modify->fix[i]);
-    }
+  templ = FixTrimeshTemplate::find(lmp,"Fix nve/trimesh");
   if (!templ) error->all(FLERR,"Fix nve/trimesh requires fix trimesh/template");
   reset_dt();
 }

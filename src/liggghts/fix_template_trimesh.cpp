@@ -7,11 +7,9 @@
 #include <cstring>
 
 #include "error.h"
-#include "fix_lookup.h"
 #include "fix_trimesh_template.h"
 #include "force.h"
 #include "lammps.h"
-#include "modify.h"
 #include "pair.h"
 #include "probability_distribution.h"
 
@@ -34,8 +32,7 @@ TrimeshInsertionSphere::TrimeshInsertionSphere(LAMMPS *lmp, int narg, char **arg
                "'fix ID group particletemplate/trimesh SEED atom_type T'");
   const int type = lmp->force->inumeric(FLERR,arg[5]);
 
-  FixTrimeshTemplate *templ = static_cast<FixTrimeshTemplate *>(
-      find_other_fix_of_style(lmp->modify,"trimesh/template",NULL));
+  FixTrimeshTemplate *templ = FixTrimeshTemplate::find(lmp,"Fix particletemplate/trimesh");
   if (!templ)
     error->all(FLERR,"Fix particletemplate/trimesh needs fix trimesh/template defined before it");
   const TrimeshTypeTemplate *tt = templ->type_template(type);

@@ -171,3 +171,13 @@ double FixTrimeshState::memory_usage()
 {
   return (7.0 * sizeof(double) + 2.0 * sizeof(double *)) * atom->nmax;
 }
+
+void FixTrimeshState::pack(int i, double *values) const
+{
+  for (int k = 0; k < 7; k++) values[k] = values_[i][k];
+}
+
+void FixTrimeshState::unpack(int i, const double *values)
+{
+  for (int k = 0; k < 7; k++) values_[i][k] = values[k];
+}

@@ -8,7 +8,8 @@
    angmom x y z: dump custom, compute reduce, variables), and as atom->quaternion (dump custom
    quat1..quat4).
    The values follow atoms across ranks (exchange), reach ghosts (border + forward comm of
-   quat, called by the pair style each step) and are written to restart files. */
+   quat, called by the pair style each step) and are written to restart files; a rolled-back step
+   of fix adapt/timestep restores them with the atoms (TimestepAtomValues). */
 
 #ifdef FIX_CLASS
 
@@ -20,10 +21,11 @@ FixStyle(trimesh/state,FixTrimeshState)
 #define LMP_FIX_TRIMESH_STATE_H
 
 #include "fix.h"
+#include "timestep_atom_state.h"
 
 namespace LAMMPS_NS {
 
-class FixTrimeshState : public Fix {
+class FixTrimeshState : public Fix, public TimestepAtomValues {
  public:
   FixTrimeshState(class LAMMPS *, int, char **);
   ~FixTrimeshState();
@@ -43,6 +45,11 @@ class FixTrimeshState : public Fix {
   int size_restart(int) { return 8; }
   int maxsize_restart() { return 8; }
   double memory_usage();
+
+  // TimestepAtomValues: orientation and angular momentum of owned atom i, 7 values
+  int count() const { return 7; }
+  void pack(int i, double *values) const;
+  void unpack(int i, const double *values);
 
   /* Refresh the orientations of the ghosts (after the owners moved). */
   void forward_orientations();

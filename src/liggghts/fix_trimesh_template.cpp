@@ -245,6 +245,22 @@ void FixTrimeshTemplate::set_halo(double eps)
   halo_ = eps;
 }
 
+FixTrimeshTemplate *FixTrimeshTemplate::find(LAMMPS *lmp, const char *who)
+{
+  FixTrimeshTemplate *found = NULL;
+  // A NULL slot is a fix being replaced by ID while a constructor asks (fix_lookup.h).
+  for (int i = 0; i < lmp->modify->nfix; i++)
+    if (lmp->modify->fix[i] && strcmp(lmp->modify->fix[i]->style,"trimesh/template") == 0) {
+      if (found) {
+        char msg[256];
+        snprintf(msg,sizeof(msg),"%s: more than one fix trimesh/template",who);
+        lmp->error->all(FLERR,msg);
+      }
+      found = static_cast<FixTrimeshTemplate*>(lmp->modify->fix[i]);
+    }
+  return found;
+}
+
 const TrimeshTypeTemplate *FixTrimeshTemplate::type_template(int t) const
 {
   if (t < 1 || t >= static_cast<int>(templates_.size())) return NULL;

@@ -49,6 +49,10 @@ class FixTrimeshTemplate : public Fix {
   // spacetree lets them be larger than the box)
   void *extract(const char *name, int &dim);
 
+  // The deck's fix trimesh/template, NULL if there is none; more than one is an error that
+  // names `who` (the command looking for it).
+  static FixTrimeshTemplate *find(class LAMMPS *lmp, const char *who);
+
   // Template of atom type t (1..ntypes), NULL where none was given.
   const TrimeshTypeTemplate *type_template(int t) const;
   // The halo eps of pair_style trimesh, added to every bounding radius.

@@ -34,6 +34,8 @@ void Neighbor::spacetree_settings(int narg, char **arg)
 {
   if (!spacetree) spacetree = new NeighSpacetree;
   spacetree->options = spacetree::SpacetreeOptions();
+  if (!spacetree->halo) spacetree->halo.reset(new MultilevelHalo(lmp));
+  spacetree->halo->reset_settings();
 
   char msg[512];
   for (int iarg = 0; iarg < narg; iarg += 2) {
@@ -47,9 +49,11 @@ void Neighbor::spacetree_settings(int narg, char **arg)
         error->all(FLERR,msg);
       }
       spacetree->options.maxLevel = value;
+    } else if (spacetree->halo->set_keyword(arg[iarg],iarg+1 < narg ? arg[iarg+1] : NULL)) {
+      // halo levels|single, halo_ratio Q: multilevel_halo.cpp
     } else {
       snprintf(msg,sizeof(msg),"Illegal neighbor spacetree command: unknown keyword '%s' "
-               "(known keywords: maxlevel)",arg[iarg]);
+               "(known keywords: maxlevel, halo, halo_ratio)",arg[iarg]);
       error->all(FLERR,msg);
     }
   }
@@ -130,10 +134,15 @@ void Neighbor::spacetree_init()
   for (int i = 0; i < modify->nfix; i++)
     if (strstr(modify->fix[i]->style,"neighlist/mesh"))
       spacetree->bins_for_meshes = true;
+
+  // Ghost atoms per size class (Comm::halo_borders), or NULL: the stock shell.
+  if (!spacetree->halo) spacetree->halo.reset(new MultilevelHalo(lmp));
+  comm->halo = spacetree->halo->install();
 }
 
 void Neighbor::spacetree_free()
 {
+  if (spacetree && comm && comm->halo == spacetree->halo.get()) comm->halo = NULL;
   delete spacetree;
   spacetree = NULL;
 }

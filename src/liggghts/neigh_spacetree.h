@@ -5,8 +5,10 @@
 #ifndef LMP_NEIGH_SPACETREE_H
 #define LMP_NEIGH_SPACETREE_H
 
+#include <memory>
 #include <vector>
 
+#include "multilevel_halo.h"
 #include "tree/Spacetree.h"
 
 namespace LAMMPS_NS {
@@ -19,6 +21,7 @@ class NeighSpacetree {
   spacetree::Spacetree tree;
   bool bins_for_meshes = false;         // a mesh wall reads Neighbor's bins
   FixSpacetree *grid_fix = nullptr;     // fix spacetree: persistent adaptive grid (else regular)
+  std::unique_ptr<MultilevelHalo> halo; // per-size ghost rule (keywords halo, halo_ratio)
 
   // Scratch of the list build, kept between builds to avoid reallocation.
   std::vector<double> contact_radius;   // radius * contact_distance_factor

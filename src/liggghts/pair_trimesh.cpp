@@ -248,12 +248,7 @@ void PairTrimesh::init_style()
   if (force->newton_pair)
     error->all(FLERR,"Pair style trimesh requires newton off (granular half list, forces on owned atoms)");
 
-  templ = NULL;
-  for (int i = 0; i < modify->nfix; i++)
-    if (strcmp(modify->fix[i]->style,"trimesh/template") == 0) {
-      if (templ) error->all(FLERR,"Pair style trimesh: more than one fix trimesh/template");
-      templ = static_cast<FixTrimeshTemplate*>(modify->fix[i]);
-    }
+  templ = FixTrimeshTemplate::find(lmp,"Pair style trimesh");
   if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
   try {
     const cm::ContactParameters &p = model->parameters;
@@ -299,6 +294,26 @@ void PairTrimesh::contact_statistics(double out[5])
   MPI_Allreduce(&stat_max_penetration,&out[4],1,MPI_DOUBLE,MPI_MAX,world);
 }
 
+std::size_t PairTrimesh::candidate_pairs() const
+{
+  return model->pairs.size();
+}
+
+const TrimeshCandidatePair &PairTrimesh::candidate_pair(std::size_t k) const
+{
+  return model->pairs[k];
+}
+
+const std::vector<ct::ContactPoint> &PairTrimesh::contacts_of(std::size_t k) const
+{
+  return model->search->contacts(k);
+}
+
+const ct::MeshContactOptions &PairTrimesh::contact_options() const
+{
+  return model->contact;
+}
+
 void PairTrimesh::compute(int eflag, int vflag)
 {
   if (eflag || vflag) ev_setup(eflag,vflag);
@@ -340,21 +355,8 @@ void PairTrimesh::compute(int eflag, int vflag)
       const double radsum = radius[i] + radius[j];
       if (dx*dx + dy*dy + dz*dz >= radsum*radsum) continue;
 
-      // Canonical order, the same on every rank (with newton off a pair across two ranks is
-      // computed on both): the body with more triangles first - the core searches in the first
-      // body's frame and transforms only the second's triangles, so a big obstacle goes first
-      // (pair time of the hopper short case -9 %, median of 3) - ties broken by the smaller ID.
-      const std::size_t ni = ti->shape.triangleCount(), nj = tj->shape.triangleCount();
-      const bool swap = nj > ni || (nj == ni && tag[j] < tag[i]);
-      const int a = swap ? j : i, b = swap ? i : j;
-      const TrimeshTypeTemplate *ta = swap ? tj : ti, *tb = swap ? ti : tj;
-
-      ct::Pose pa, pb;
-      pa.position = Eigen::Vector3d(x[a][0],x[a][1],x[a][2]);
-      pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
-      pb.position = Eigen::Vector3d(x[b][0],x[b][1],x[b][2]);
-      pb.orientation = Eigen::Quaterniond(quat[b][0],quat[b][1],quat[b][2],quat[b][3]);
-      model->pairs.push_back({a,b,&ta->shape,&tb->shape,pa,pb});
+      // canonical body order, the same on every rank (newton off: computed on both)
+      model->pairs.push_back(canonical_candidate_pair(i,j,*ti,*tj,tag,x,quat));
     }
   }
 

@@ -27,13 +27,17 @@ PairStyle(trimesh,PairTrimesh)
 #ifndef LMP_PAIR_TRIMESH_H
 #define LMP_PAIR_TRIMESH_H
 
+#include <cstddef>
 #include <memory>
+#include <vector>
 
+#include "contact/MeshContact.h"
 #include "pair.h"
 
 namespace LAMMPS_NS {
 
 struct PairTrimeshModel;
+struct TrimeshCandidatePair;
 
 class PairTrimesh : public Pair {
  public:
@@ -52,6 +56,16 @@ class PairTrimesh : public Pair {
   // Of the last compute, summed over ranks: contacts, body pairs tested, triangle pairs
   // checked, hybrid fallbacks; and the largest penetration (halo overlap eps - d/2, <= eps).
   void contact_statistics(double out[5]);
+
+  // The last compute's body pairs that passed the bounding-sphere precheck (local atom indices
+  // in the canonical body order, shapes, poses) with their contact points (world frame), and the
+  // contact search's options (halo, distance method): what fix adapt/timestep reads for its veto,
+  // contact ceiling and rollback (timestep_trimesh_scan.h).
+  std::size_t candidate_pairs() const;
+  const TrimeshCandidatePair &candidate_pair(std::size_t k) const;
+  const std::vector<spacetree::contact::ContactPoint> &contacts_of(std::size_t k) const;
+  const spacetree::contact::MeshContactOptions &contact_options() const;
+  class FixTrimeshTemplate *trimesh_template() const { return templ; }
 
  private:
   void allocate();

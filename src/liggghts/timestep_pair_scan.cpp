@@ -18,6 +18,7 @@
 #include "modify.h"
 #include "neigh_list.h"
 #include "neighbor.h"
+#include "pair_trimesh.h"
 #include "primitive_wall.h"
 #include "tri_mesh.h"
 
@@ -33,7 +34,8 @@ TimestepPairScan::Result TimestepPairScan::scan(NeighList *list, const spacetree
   std::fill(tally_,tally_ + NTALLY,0.0);
 
   if (speeds_) share_accelerations();
-  if (list) scan_list(list);
+  if (trimesh_) scan_trimesh(list);   // collective
+  else if (list) scan_list(list);
   for (int f = 0; f < modify->nfix; f++) {
     if (strcmp(modify->fix[f]->style,"wall/gran") != 0) continue;
     FixWallGran *wall = static_cast<FixWallGran*>(modify->fix[f]);
@@ -68,8 +70,28 @@ void TimestepPairScan::share_accelerations()
   comm->forward_comm_fix(owner_);
 }
 
+/* Triangulated particles: the veto and the approach test take the velocities at the contact
+   points, so the ghosts get the end-of-step velocities and angular velocities of their owners
+   (LIGGGHTS' forward communication of the step carried the half-step ones): a pair across two
+   ranks is then judged alike on both, as on one rank. */
+
+void TimestepPairScan::share_velocities()
+{
+  sharing_ = Shared::Velocities;
+  comm->forward_comm_fix(owner_);
+  sharing_ = Shared::Accelerations;
+}
+
 int TimestepPairScan::pack_comm(int n, int *list, double *buf) const
 {
+  if (sharing_ == Shared::Velocities) {
+    for (int m = 0; m < n; m++)
+      for (int k = 0; k < 3; k++) {
+        buf[6*m+k] = atom->v[list[m]][k];
+        buf[6*m+3+k] = atom->omega[list[m]][k];
+      }
+    return 6;
+  }
   for (int m = 0; m < n; m++)
     for (int k = 0; k < 3; k++) buf[3*m+k] = accel_[3*size_t(list[m])+k];
   return 3;   // LIGGGHTS 3.8 Comm::forward_comm_fix wants the values per atom
@@ -77,6 +99,14 @@ int TimestepPairScan::pack_comm(int n, int *list, double *buf) const
 
 void TimestepPairScan::unpack_comm(int n, int first, const double *buf)
 {
+  if (sharing_ == Shared::Velocities) {
+    for (int m = 0; m < n; m++)
+      for (int k = 0; k < 3; k++) {
+        atom->v[first+m][k] = buf[6*m+k];
+        atom->omega[first+m][k] = buf[6*m+3+k];
+      }
+    return;
+  }
   for (int m = 0; m < n; m++)
     for (int k = 0; k < 3; k++) accel_[3*size_t(first+m)+k] = buf[3*m+k];
 }
@@ -123,6 +153,33 @@ void TimestepPairScan::scan_list(NeighList *list)
       if (veto_ && veto_->consider(x[i],v[i],radius[i],x[j],v[j],radius[j],dt_test_)) tally_[CRITICAL] += share;
     }
   }
+}
+
+void TimestepPairScan::use_trimesh(PairTrimesh *pair, double allowedPenetration, double safety)
+{
+  trimesh_.reset(pair ? new TimestepTrimeshScan(lmp,pair) : NULL);
+  allowed_penetration_ = allowedPenetration;
+  safety_ = safety;
+}
+
+void TimestepPairScan::scan_trimesh(NeighList *list)
+{
+  share_velocities();
+  TimestepTrimeshScan::Settings s;
+  s.groupbit = owner_->groupbit;
+  s.dtTest = dt_test_;
+  s.allowedPenetration = allowed_penetration_;
+  s.safety = safety_;
+  s.ceiling = policy_->dtContact > 0.0;
+  s.speeds = speeds_;
+  s.contactTime = policy_->contactTime;
+  s.accel = accel_.data();
+  const TimestepTrimeshScan::Tally t = trimesh_->scan(list,s,veto_);
+  tally_[OVERLAP] = std::max(tally_[OVERLAP],t.maxPenetration);
+  tally_[CONTACTS] += t.contacts;
+  tally_[CRITICAL] += t.critical;
+  if (t.soon) tally_[SOON] = 1.0;
+  tally_[SPEED] = std::max(tally_[SPEED],t.speed);
 }
 
 // fix wall/gran ... primitive: every local particle of the group against the wall

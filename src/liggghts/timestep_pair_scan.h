@@ -3,16 +3,19 @@
    walls (fix wall/gran, primitive and mesh), the deepest overlap, the number of contacts, whether
    a pair is in contact or about to touch (the contact ceiling applies), the largest contact speed
    (vimpact), and the veto over the approaching pairs. The decisions themselves are the core's
-   (src/core/dynamics). */
+   (src/core/dynamics). Pairs of triangulated particles (pair_style trimesh) are judged by their
+   surface distance instead (TimestepTrimeshScan): their overlap is the halo penetration. */
 
 #ifndef LMP_TIMESTEP_PAIR_SCAN_H
 #define LMP_TIMESTEP_PAIR_SCAN_H
 
+#include <memory>
 #include <vector>
 
 #include "dynamics/AdaptiveTimestep.h"
 #include "dynamics/TimestepVeto.h"
 #include "pointers.h"
+#include "timestep_trimesh_scan.h"
 
 namespace LAMMPS_NS {
 
@@ -27,8 +30,14 @@ class TimestepPairScan : protected Pointers {
   };
 
   // owner: the fix whose group is scanned and whose forward communication carries the
-  // accelerations to the ghosts (its pack_comm / unpack_comm call the ones below).
+  // accelerations (and, for triangulated particles, the end-of-step velocities) to the ghosts
+  // (its pack_comm / unpack_comm call the ones below; at most 6 values per atom).
   TimestepPairScan(class LAMMPS *lmp, class Fix *owner) : Pointers(lmp), owner_(owner) {}
+
+  // The pairs of the list are triangulated particles of `pair` (NULL: spheres): judged by their
+  // surface distance, the veto keeping their halo penetration within allowedPenetration.
+  void use_trimesh(class PairTrimesh *pair, double allowedPenetration, double safety);
+  const TimestepTrimeshScan *trimesh() const { return trimesh_.get(); }
 
   // list: the fix's copy of the granular list (NULL: walls only); veto: NULL when off. dtTest is
   // the step the veto and "about to touch" are tested against (the largest creep can give).
@@ -43,7 +52,9 @@ class TimestepPairScan : protected Pointers {
   // this rank's part: max overlap, contacts, critical pairs, contact soon, largest contact speed
   enum { OVERLAP, CONTACTS, CRITICAL, SOON, SPEED, NTALLY };
   void share_accelerations();
+  void share_velocities();
   void scan_list(class NeighList *list);
+  void scan_trimesh(class NeighList *list);
   void scan_primitive_wall(class FixWallGran *wall);
   void scan_mesh_wall(class FixWallGran *wall);
   // particle i against a wall at its closest point (delta: centre to that point; gap < 0:
@@ -59,6 +70,9 @@ class TimestepPairScan : protected Pointers {
   double tally_[NTALLY];
   std::vector<double> accel_;   // f/m of owned and ghost atoms (vimpact: relative normal acceleration)
   std::vector<double> mesh_gap_, mesh_delta_;
+  std::unique_ptr<TimestepTrimeshScan> trimesh_;
+  enum class Shared { Accelerations, Velocities } sharing_ = Shared::Accelerations;   // of pack_comm
+  double allowed_penetration_ = 0.0, safety_ = 1.0;
 };
 
 }

@@ -15,6 +15,22 @@ using namespace LAMMPS_NS;
 namespace ct = spacetree::contact;
 namespace pl = spacetree::parallel;
 
+TrimeshCandidatePair LAMMPS_NS::canonical_candidate_pair(int i, int j, const TrimeshTypeTemplate &ti,
+                                                         const TrimeshTypeTemplate &tj, const int *tag,
+                                                         double **x, double **quat)
+{
+  const std::size_t ni = ti.shape.triangleCount(), nj = tj.shape.triangleCount();
+  const bool swap = nj > ni || (nj == ni && tag[j] < tag[i]);
+  const int a = swap ? j : i, b = swap ? i : j;
+  const TrimeshTypeTemplate &ta = swap ? tj : ti, &tb = swap ? ti : tj;
+  ct::Pose pa, pb;
+  pa.position = Eigen::Vector3d(x[a][0],x[a][1],x[a][2]);
+  pa.orientation = Eigen::Quaterniond(quat[a][0],quat[a][1],quat[a][2],quat[a][3]);
+  pb.position = Eigen::Vector3d(x[b][0],x[b][1],x[b][2]);
+  pb.orientation = Eigen::Quaterniond(quat[b][0],quat[b][1],quat[b][2],quat[b][3]);
+  return {a,b,&ta.shape,&tb.shape,pa,pb};
+}
+
 namespace {
 
 // Task-level grain in nominal triangle pairs: the mesh-contact search prunes most triangle

@@ -28,13 +28,21 @@ bool TimestepVeto::consider(const double xi[3], const double vi[3], double ri, c
       -((vj[0] - vi[0]) * d[0] + (vj[1] - vi[1]) * d[1] + (vj[2] - vi[2]) * d[2]) / distance;
   if (!(approach > 0.0)) return false;
   // distance left before the pair penetrates deeper than allowed
-  const double gap = distance - ri - rj - halo_ + allowedOverlap_;
-  if (gap <= 0.0) return false;              // already deeper: a smaller step cannot undo it
-  const double safe = safety_ * gap / approach;
+  return considerGap(distance - ri - rj - halo_ + allowedOverlap_, approach, dt);
+}
+
+bool TimestepVeto::considerGap(double gap, double closingSpeed, double dt) {
+  if (!(closingSpeed > 0.0)) return false;
+  if (!(gap > 0.0)) return false;            // already deeper: a smaller step cannot undo it
+  const double safe = safety_ * gap / closingSpeed;
   if (dt <= safe) return false;              // the step stays within the safe fraction of the gap
   ++critical_;
   if (safe < limit_) limit_ = safe;
   return true;
+}
+
+double haloGap(double distance, double halo, double allowedPenetration) {
+  return distance - 2.0 * halo + 2.0 * allowedPenetration;
 }
 
 }  // namespace spacetree

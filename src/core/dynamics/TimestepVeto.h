@@ -8,6 +8,11 @@
 // overlap eps, i.e. the veto keeps the kinematically extrapolated penetration
 // delta + v_n dt of every approaching pair within eps. Pairs already deeper than eps are not
 // critical: shrinking the next step cannot undo that penetration (the rollback handles it).
+//
+// Triangulated particles (halo eps_h, contact while the surfaces are closer than 2 eps_h): the
+// caller measures the surface distance d and the closing speed along the shortest segment, and
+// haloGap() turns them into the distance left before the halo penetration eps_h - d/2 exceeds
+// the allowed one; considerGap() then decides as for spheres.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +38,11 @@ class TimestepVeto {
   bool consider(const double xi[3], const double vi[3], double ri, const double xj[3],
                 const double vj[3], double rj, double dt);
 
+  // One pair given by the distance `gap` it may still close before it counts as violated (<= 0:
+  // already deeper, not critical) and its closing speed (<= 0: not approaching), against step dt.
+  // Same decision as consider(); the halo and allowed overlap of the constructor are not used.
+  bool considerGap(double gap, double closingSpeed, double dt);
+
   // The largest time step all critical pairs allow (+inf when none was critical).
   double limit() const { return limit_; }
   std::uint64_t criticalPairs() const { return critical_; }
@@ -42,5 +52,10 @@ class TimestepVeto {
   double limit_ = std::numeric_limits<double>::infinity();
   std::uint64_t critical_ = 0;
 };
+
+// Triangulated particles: the distance two surfaces `distance` apart may still close before the
+// halo penetration halo - distance/2 of the pair exceeds allowedPenetration (<= halo):
+// distance - 2 halo + 2 allowedPenetration.
+double haloGap(double distance, double halo, double allowedPenetration);
 
 }  // namespace spacetree

@@ -127,7 +127,7 @@ def test_moving(R, np):
     print("  seed %s (set SPACETREE_TEST_SEED to vary)" % seed)
     # dilute 1:20 gas, periodic, fast: particles cross many fine cells, pairs form and break
     gen = ["continuous", "--rmin", "0.5e-3", "--rmax", "1e-2", "--n", "3000", "--fill", "0.25",
-           "--boundary", "p", "--vel", "4.0", "--seed", seed]
+           "--boundary", "p", "--vel", "6.0", "--seed", seed]
     data = R.gen("moving.data", gen)
     base = dict(data=data, bnd="p", skin="1e-3", nsteps=str(MOVING_STEPS), dumpevery=str(MOVING_DUMP),
                 thermoevery="1", dt="5e-6")
