@@ -136,6 +136,25 @@ TEST_F(HostileMeshFiles, CoordinatesWhoseVolumeOverflowsOrUnderflowsAreNamed) {
   EXPECT_NO_THROW(readValidatedMesh(write("small.stl", asciiCube(1e-50))));
 }
 
+TEST_F(HostileMeshFiles, SelfIntersectingSurfaceWithUnphysicalInertiaIsNamed) {
+  // Found by tests/fuzz: the cube of quads with one corner moved from (0, 1, 0) to (5, 1, 0).
+  // Its bottom quad becomes a bow-tie; the surface stays closed and consistently oriented with
+  // a positive volume, but it crosses itself and its inertia is not a solid's (a negative
+  // principal moment): the template would have turned the wrong way.
+  const std::string bowTie = write("bowtie.obj",
+                                   "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 5 1 0\nv 0 0 1\nv 1 0 1\n"
+                                   "v 1 1 1\nv 0 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\n"
+                                   "f 2 3 7 6\nf 4 8 7 3\nf 1 5 8 4\n");
+  expectRejected(bowTie, "are not those of a solid");
+  expectRejected(bowTie, "the surface intersects itself");
+  // The same file with the corner where it belongs is the unit cube.
+  const std::string cube = write("cube.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\n"
+                                 "v 1 1 1\nv 0 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\n"
+                                 "f 2 3 7 6\nf 4 8 7 3\nf 1 5 8 4\n");
+  EXPECT_NO_THROW(readValidatedMesh(cube));
+}
+
 TEST_F(HostileMeshFiles, DirectoryGivenAsMeshIsNamed) {
   std::filesystem::create_directories(path("shapes.stl"));
   expectRejected(path("shapes.stl"), "is a directory, not a mesh file");

@@ -1,5 +1,7 @@
 #include "geometry/MeshValidation.h"
 
+#include "geometry/MassProperties.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -140,6 +142,17 @@ MeshValidationReport validateMesh(TriangleMesh& mesh, const std::string& name,
                      " < 0): triangles must be counter-clockwise seen from outside");
     mesh.flipOrientation();
     report.flippedInwardOrientation = true;
+  }
+
+  // 7. the moments of inertia of a solid: positive, I1 + I2 >= I3 (2 int z^2 dm >= 0)
+  const Eigen::Vector3d moments = computeMassProperties(mesh).principalMomentsPerUnitDensity;
+  const double slack = kInertiaTolerance * moments.cwiseAbs().maxCoeff();
+  if (!moments.allFinite() || !(moments[0] > 0.0) || !(moments[0] + moments[1] >= moments[2] - slack)) {
+    std::ostringstream text;
+    text << "principal moments of inertia per unit density (" << moments[0] << ", " << moments[1]
+         << ", " << moments[2] << ") are not those of a solid (each > 0, the two smaller summing "
+         << "to at least the largest): the surface intersects itself";
+    fail(name, text.str());
   }
   return report;
 }

@@ -12,7 +12,12 @@
 //      triangles ("open surface" for one, "non-manifold edge" for three or more);
 //   5. consistently oriented: the two triangles of every edge traverse it in opposite
 //      directions;
-//   6. enclosed volume (signed, divergence theorem) > volumeTolerance * L^3.
+//   6. enclosed volume (signed, divergence theorem) > volumeTolerance * L^3;
+//   7. principal moments of inertia (after 6.'s repair) those of a solid: each > 0 and
+//      I1 + I2 >= I3 (within kInertiaTolerance of I3). A closed, consistently oriented surface
+//      that intersects itself (a bow-tie polygon, overlapping parts of one component) can
+//      violate them - the integrator would then turn with a negative moment. This is a
+//      necessary condition only: self-intersections that keep the moments physical pass.
 // Documented repairs (reported in MeshValidationReport), each switchable off to get an error:
 //   - inward orientation: a consistently oriented closed mesh with negative signed volume is
 //     turned inside out (every triangle flipped) - the usual result of a mirrored export;
@@ -28,6 +33,7 @@
 
 namespace spacetree::geometry {
 
+inline constexpr double kInertiaTolerance = 1e-9;  // relative to the largest moment
 inline constexpr double kMinMeshExtent = 1e-50;
 inline constexpr double kMaxMeshExtent = 1e50;
 
