@@ -130,9 +130,13 @@ stage_fuzz_coverage() {
     { tail -20 build-fuzzcov/replay.log; return 1; }
   llvm-profdata merge -sparse build-fuzzcov/*.profraw -o build-fuzzcov/fuzz.profdata || return 1
   llvm-cov report build-fuzzcov/tests/fuzz/fuzz_mesh_reader -instr-profile=build-fuzzcov/fuzz.profdata \
-    src/core/geometry/MeshIO.cpp src/core/geometry/MeshValidation.cpp >build-fuzzcov/report.txt || return 1
+    >build-fuzzcov/report.txt || return 1
+  llvm-cov show build-fuzzcov/tests/fuzz/fuzz_mesh_reader -instr-profile=build-fuzzcov/fuzz.profdata \
+    -format=html -output-dir=build-fuzzcov/html >/dev/null || return 1
   cat build-fuzzcov/report.txt
-  note "fuzz-coverage: $(awk '/^TOTAL/{print "regions " $4 ", lines " $10 " covered (MeshIO.cpp + MeshValidation.cpp)"}' build-fuzzcov/report.txt)"
+  # Columns: file, regions, missed, cover, functions, missed, executed, lines, missed lines, ...
+  note "fuzz-coverage: $(awk '$1 ~ /geometry\/(MeshIO|MeshValidation)\.cpp$/ {
+      printf "%s lines %d of %d (%s), ", $1, $8 - $9, $8, $10 }' build-fuzzcov/report.txt)per line: build-fuzzcov/html"
 }
 
 # run_deck <name> <liggghts arguments...>: one deck under valgrind memcheck in build-check-decks/<name>
