@@ -10,8 +10,11 @@ bidisperse   small spheres (diameter --d) on a jittered cubic lattice, plus --K 
              diameter --R * d on a coarse lattice; lattice sites whose small sphere would overlap
              a big one are removed.  Without overlaps by construction: the lattice spacing is
              s = d (1 + gap) and each coordinate is jittered by at most jitter * (s - d) / 2.
-continuous   radii log-uniform in [rmin, rmax], random sequential non-overlapping placement
-             (largest first) with a multi-class cell grid for the overlap test.
+continuous   radii log-uniform in [rmin, rmax] (--law loguniform) or with a number density
+             proportional to r^-exponent (--law power; with --exponent 3 each doubling of the
+             radius holds 4 times fewer spheres, and every size holds the same solid volume per
+             unit radius), random sequential non-overlapping
+             placement (largest first) with a multi-class cell grid for the overlap test.
 crowded      one big sphere (diameter R * d) at the box centre, densely surrounded by a shell of
              small spheres (a Fibonacci sphere, thousands of them, all within --gap of contact)
              and optionally a jittered lattice of small ones in the rest of the box: the big
@@ -330,9 +333,17 @@ def cmd_continuous(a):
     if rmax < rmin:
         raise SystemExit("rmax < rmin")
     lr = math.log(rmax / rmin)
+
+    def draw():
+        u = rng.random()
+        if a.law == "loguniform" or a.exponent == 1.0:
+            return rmin * math.exp(lr * u)
+        e = 1.0 - a.exponent  # inverse of the cumulative distribution of r^-exponent
+        return (rmin ** e + u * (rmax ** e - rmin ** e)) ** (1.0 / e)
+
     radii = []
     if a.n is not None:
-        radii = [rmin * math.exp(lr * rng.random()) for _ in range(a.n)]
+        radii = [draw() for _ in range(a.n)]
         # always include the extremes so the size ratio is exact
         if a.n >= 2 and rmax > rmin:
             radii[0], radii[1] = rmax, rmin
@@ -351,7 +362,7 @@ def cmd_continuous(a):
         Vt = a.fill * L[0] * L[1] * L[2]
         vol = 0.0
         while vol < Vt:
-            r = rmin * math.exp(lr * rng.random())
+            r = draw()
             if not radii and rmax > rmin:
                 r = rmax
             radii.append(r)
@@ -397,8 +408,9 @@ def cmd_continuous(a):
     check_inside(box, spheres)
     vels = velocities(rng, len(spheres), a.vel, a.vz0)
     dd, vol = summary(spheres)
-    hdr = ["continuous: %d spheres, radii log-uniform in [%g, %g] (ratio %g), %d attempts"
-           % (len(spheres), rmin, rmax, rmax / rmin, attempts),
+    law = "log-uniform" if a.law == "loguniform" else "number density ~ r^-%g" % a.exponent
+    hdr = ["continuous: %d spheres, radii %s in [%g, %g] (ratio %g), %d attempts"
+           % (len(spheres), law, rmin, rmax, rmax / rmin, attempts),
            "boundary %s, box %g x %g x %g, solid fraction %.4f" % (a.boundary, box.L[0], box.L[1], box.L[2],
                                                                   vol / (box.L[0] * box.L[1] * box.L[2]))]
     N = write_data(a.out, box, spheres, vels, hdr, a.density)
@@ -570,8 +582,11 @@ def main(argv=None):
                    help="keep only small spheres within this surface distance (units of d) of a big one")
     b.set_defaults(func=cmd_bidisperse)
 
-    c = sub.add_parser("continuous", help="log-uniform radii, random placement")
+    c = sub.add_parser("continuous", help="log-uniform or power-law radii, random placement")
     common(c)
+    c.add_argument("--law", choices=["loguniform", "power"], default="loguniform",
+                   help="radius distribution: log-uniform, or number density ~ r^-exponent")
+    c.add_argument("--exponent", type=float, default=3.0, help="exponent of --law power")
     c.add_argument("--rmin", type=float, required=True)
     c.add_argument("--rmax", type=float, required=True)
     c.add_argument("--n", type=int, default=None, help="number of spheres")

@@ -9,7 +9,6 @@
 
 #include "atom.h"
 #include "error.h"
-#include "fix_spacetree.h"
 #include "modify.h"
 #include "neigh_spacetree.h"
 #include "neighbor.h"
@@ -36,7 +35,7 @@ enum Summary {
 }
 
 ComputeTreestats::ComputeTreestats(LAMMPS *lmp, int &iarg, int narg, char **arg) :
-  Compute(lmp, iarg, narg, arg), fix(NULL)
+  Compute(lmp, iarg, narg, arg)
 {
   if (iarg != narg) {
     char msg[256];
@@ -58,8 +57,7 @@ ComputeTreestats::~ComputeTreestats()
 
 void ComputeTreestats::init()
 {
-  fix = static_cast<FixSpacetree *>(modify->find_fix_style_strict("spacetree",0));
-  if (!fix)
+  if (!modify->find_fix_style_strict("spacetree",0))
     error->all(FLERR,"Compute treestats requires fix spacetree (which requires "
                "'neighbor <skin> spacetree')");
 }
@@ -71,11 +69,12 @@ void ComputeTreestats::compute_vector()
   std::fill(local,local+size_vector,0.0);
   double deepest = 0.0, seconds = 0.0;
 
-  const spacetree::AdaptiveGrid *grid = fix->grid();
   const NeighSpacetree *st = neighbor->spacetree;
-  if (grid && st) {
+  const spacetree::AdaptiveGrid *grid = st ? st->search.grid() : NULL;
+  if (grid) {
+    const spacetree::Spacetree &tree = st->search.tree();
     const spacetree::AdaptiveGridStatistics &g = grid->statistics();
-    const spacetree::SpacetreeStatistics &t = st->tree.statistics();
+    const spacetree::SpacetreeStatistics &t = tree.statistics();
     local[kComparisons] = double(t.candidatePairs);
     local[kRefinements] = double(g.refinements);
     local[kCoarsenings] = double(g.coarsenings);
@@ -83,7 +82,7 @@ void ComputeTreestats::compute_vector()
     local[kLeafCells] = double(grid->leafCellCount());
     local[kGridResets] = double(g.geometryResets);
     deepest = g.deepestLevel;
-    seconds = fix->last_update_seconds();
+    seconds = st->search.lastGridSeconds();
     const int nlevels = std::min<int>(kLevels,int(g.levels.size()));
     const std::vector<std::uint64_t> vertices = grid->verticesPerLevel();
     for (int l = 0; l < nlevels; l++) {
@@ -97,9 +96,9 @@ void ComputeTreestats::compute_vector()
       local[kVirtualLinks] += double(t.levels[l].virtualLinks);
     }
     // Owned particles only, so that the sum over ranks is the atom count.
-    const int nown = std::min(atom->nlocal,st->tree.particleCount());
+    const int nown = std::min(atom->nlocal,tree.particleCount());
     for (int i = 0; i < nown; i++) {
-      const int l = st->tree.levelOf(i);
+      const int l = tree.levelOf(i);
       if (l < kLevels) local[kSummary + kPerLevel*l + 2] += 1.0;
     }
     local[kRealParticles] = nown;

@@ -30,9 +30,6 @@ class ComputeTreestats : public Compute {
   ~ComputeTreestats();
   void init();
   void compute_vector();
-
- private:
-  class FixSpacetree *fix;
 };
 
 }

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <utility>
 
 #include "comm.h"
 #include "error.h"
@@ -15,19 +16,17 @@
 #include "modify.h"
 #include "neigh_spacetree.h"
 #include "neighbor.h"
+#include "tree/AdaptiveGrid.h"
 #include "tree/LeafCellVtk.h"
+#include "tree/NeighbourSearch.h"
 #include "tree/WordPacking.h"
 #include "update.h"
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-namespace {
-const int kSpacetreeNeighborStyle = 3;  // Neighbor::style of `neighbor <skin> spacetree`
-}
-
 FixSpacetree::FixSpacetree(LAMMPS *lmp, int narg, char **arg) :
-  Fix(lmp, narg, arg), update_seconds(0.0), vtk_every(0), restart_read(false),
+  Fix(lmp, narg, arg), grid_given(false), vtk_every(0), restart_read(false),
   restored_grid_pending(false)
 {
   char msg[512];
@@ -119,13 +118,20 @@ void FixSpacetree::check_options()
                "name needs a '%' (replaced by the rank; each rank writes its own grid)");
 }
 
-// Not in the destructor: LAMMPS::destroy() (exit, `clear`) deletes Neighbor before Modify, so
-// a fix destructor must not touch `neighbor`. Modify calls pre_delete(true) only for `unfix` or
-// a replacing `fix` command, while Neighbor is alive; at teardown (false) there is no list left.
-void FixSpacetree::pre_delete(bool unfixflag)
+FixSpacetree::~FixSpacetree()
 {
-  if (unfixflag && neighbor && neighbor->spacetree && neighbor->spacetree->grid_fix == this)
-    neighbor->spacetree->grid_fix = NULL;
+  // The grid lives in the neighbour search, which drops it at the next Neighbor::init() when
+  // no fix spacetree is left; nothing here reads Neighbor (deleted first at exit).
+}
+
+spacetree::NeighbourSearch &FixSpacetree::search()
+{
+  return neighbor->spacetree->search;
+}
+
+const spacetree::AdaptiveGrid *FixSpacetree::grid()
+{
+  return grid_given && neighbor->spacetree ? search().grid() : NULL;
 }
 
 int FixSpacetree::setmask()
@@ -136,49 +142,23 @@ int FixSpacetree::setmask()
 
 void FixSpacetree::init()
 {
-  if (neighbor->style != kSpacetreeNeighborStyle || !neighbor->spacetree)
+  if (!neighbor->uses_spacetree() || !neighbor->spacetree)
     error->all(FLERR,"Fix spacetree requires 'neighbor <skin> spacetree' (the grid drives that "
                "neighbor list builder; with bin, nsq or multi it would have no effect)");
   if (!given[kGrid] && !restart_read)
     error->all(FLERR,"Illegal fix spacetree command: expected 'grid regular|adaptive|reluctant' "
                "after the style (it may be left out only when a restart file holds this fix ID)");
   check_options();
-  // The grid and the tree must agree on the halo and on the deepest level.
-  spacetree::AdaptiveGridOptions wanted = options;
-  wanted.epsilon = 0.5*neighbor->skin;
-  wanted.pairsFromCaller = true;  // the builder's sweep reports its pairs (after_sweep)
-  const int neighbor_max = neighbor->spacetree->options.maxLevel;
-  if (wanted.maxLevel > neighbor_max) wanted.maxLevel = neighbor_max;
-  if (restored_grid_pending) apply_restored_grid(wanted);
-  if (!grid_ || grid_->options().epsilon != wanted.epsilon ||
-      grid_->options().maxLevel != wanted.maxLevel) {
-    try {
-      grid_.reset(new spacetree::AdaptiveGrid(wanted));
-    } catch (const std::exception &e) {
-      error->all(FLERR,e.what());
-    }
+  // The search gives the grid its halo and caps its depth. A new fix starts from the start-off
+  // grid (or its restart file's grids); later runs keep refining the same grid.
+  if (restored_grid_pending) apply_restored_grid();
+  try {
+    if (grid_given) search().useGrid(options);
+    else search().useNewGrid(options);
+  } catch (const std::exception &e) {
+    error->all(FLERR,e.what());
   }
-}
-
-void FixSpacetree::build_tree(spacetree::Spacetree &tree, const double (*x)[3],
-                              const double (*v)[3], const double *radius, int nall, int nlocal)
-{
-  const double t0 = MPI_Wtime();
-  grid_->update(x,v,radius,nall);
-  update_seconds = MPI_Wtime() - t0;
-  grid_->buildSpacetree(tree,x,radius,nall,nlocal);
-}
-
-void FixSpacetree::after_sweep(const double (*x)[3], const double (*v)[3], const double *radius,
-                               int nall, const std::vector<int> &pair_i,
-                               const std::vector<int> &pair_j)
-{
-  if (options.type != spacetree::GridType::Reluctant) return;
-  const double t0 = MPI_Wtime();
-  pair_second.resize(pair_j.size());
-  for (size_t k = 0; k < pair_j.size(); k++) pair_second[k] = pair_j[k] < 0 ? ~pair_j[k] : pair_j[k];
-  grid_->refineForPairs(x,v,radius,nall,pair_i.data(),pair_second.data(),pair_i.size());
-  update_seconds += MPI_Wtime() - t0;
+  grid_given = true;
 }
 
 void FixSpacetree::end_of_step()
@@ -210,7 +190,7 @@ void FixSpacetree::write_vtk()
   snprintf(title,sizeof(title),"spacetree %s leaf cells, step " BIGINT_FORMAT ", rank %d",
            spacetree::gridTypeName(options.type),update->ntimestep,comm->me);
   try {
-    spacetree::writeLeafCellsVtk(*grid_,out,title);
+    spacetree::writeLeafCellsVtk(*grid(),out,title);
   } catch (const std::exception &e) {
     error->one(FLERR,e.what());
   }
@@ -237,7 +217,8 @@ enum RestartHeader {
 void FixSpacetree::write_restart(FILE *fp)
 {
   // Collective: Modify calls it on every rank (fp is open on proc 0 only).
-  const std::vector<std::int64_t> mine = grid_ ? grid_->serialise() : restored_grid;
+  const spacetree::AdaptiveGrid *current = grid();
+  const std::vector<std::int64_t> mine = current ? current->serialise() : restored_grid;
   long long count = (long long) mine.size();
   const int nprocs = comm->nprocs, me = comm->me;
   std::vector<long long> counts(me == 0 ? nprocs : 0);
@@ -419,24 +400,26 @@ void FixSpacetree::restart(char *buf)
   restored_grid_pending = true;
 }
 
-void FixSpacetree::apply_restored_grid(const spacetree::AdaptiveGridOptions &wanted)
+void FixSpacetree::apply_restored_grid()
 {
   // First init() after read_restart: every rank takes its stored grid under this run's
   // options, or (if any rank cannot: other skin or maxlevel) all start from the start-off grid.
   restored_grid_pending = false;
   std::string why;
+  spacetree::AdaptiveGrid restored;
   try {
-    grid_.reset(new spacetree::AdaptiveGrid(
-        spacetree::AdaptiveGrid::deserialise(restored_grid.data(),restored_grid.size(),wanted)));
+    restored = spacetree::AdaptiveGrid::deserialise(restored_grid.data(),restored_grid.size(),
+                                                    search().gridOptions(options));
   } catch (const std::exception &e) {
     why = e.what();
-    grid_.reset();
   }
   restored_grid.clear();
   int failed = why.empty() ? 0 : 1, any = 0;
   MPI_Allreduce(&failed,&any,1,MPI_INT,MPI_MAX,world);
-  if (any) {
-    grid_.reset();
+  if (!any) {
+    search().useGrid(std::move(restored));
+    grid_given = true;  // init() keeps it
+  } else {
     if (comm->me == 0) {
       char msg[512];
       snprintf(msg,sizeof(msg),"Fix spacetree: the grids of the restart file are not reused (%s): "
@@ -444,7 +427,9 @@ void FixSpacetree::apply_restored_grid(const spacetree::AdaptiveGridOptions &wan
                failed ? why.c_str() : "another rank's grid does not fit this run's skin or maxlevel");
       error->warning(FLERR,msg);
     }
-  } else if (comm->me == 0) {
+    return;
+  }
+  if (comm->me == 0) {
     char line[256];
     snprintf(line,sizeof(line),"Fix spacetree %s: reusing the grids of %d rank%s from the restart "
              "file\n",id,comm->nprocs,comm->nprocs > 1 ? "s" : "");

@@ -3,7 +3,9 @@
    |xi-xj| <= (ri+rj)*contact_distance_factor + skin, own/own pairs once under
    the lower index, own/ghost pairs always, contact history copied from
    fix contacthistory), but finds the candidates with the multilevel
-   spacetree instead of bins sized by the biggest particle. */
+   spacetree instead of bins sized by the biggest particle. Four steps:
+   find the pairs (core NeighbourSearch), per-atom neighbour arrays, page
+   sizing for crowded particles, LIGGGHTS' pages with the contact history. */
 
 #include <algorithm>
 #include <cstdio>
@@ -16,7 +18,6 @@
 #include "error.h"
 #include "fix.h"
 #include "fix_contact_history.h"
-#include "fix_spacetree.h"
 #include "force.h"
 #include "modify.h"
 #include "my_page.h"
@@ -33,22 +34,22 @@ using namespace LAMMPS_NS;
 void Neighbor::spacetree_settings(int narg, char **arg)
 {
   if (!spacetree) spacetree = new NeighSpacetree;
-  spacetree->options = spacetree::SpacetreeOptions();
+  spacetree::NeighbourSearch &search = spacetree->search;
   if (!spacetree->halo) spacetree->halo.reset(new MultilevelHalo(lmp));
   spacetree->halo->reset_settings();
 
   char msg[512];
+  int maxlevel = spacetree::kMaxSpacetreeLevel;
   for (int iarg = 0; iarg < narg; iarg += 2) {
     if (strcmp(arg[iarg],"maxlevel") == 0) {
       if (iarg+1 >= narg)
         error->all(FLERR,"Illegal neighbor spacetree command: keyword 'maxlevel' needs a value");
-      int value = force->inumeric(FLERR,arg[iarg+1]);
-      if (value < 0 || value > spacetree::kMaxSpacetreeLevel) {
+      maxlevel = force->inumeric(FLERR,arg[iarg+1]);
+      if (maxlevel < 0 || maxlevel > spacetree::kMaxSpacetreeLevel) {
         snprintf(msg,sizeof(msg),"Illegal neighbor spacetree command: maxlevel %d is outside [0,%d]",
-                 value,spacetree::kMaxSpacetreeLevel);
+                 maxlevel,spacetree::kMaxSpacetreeLevel);
         error->all(FLERR,msg);
       }
-      spacetree->options.maxLevel = value;
     } else if (spacetree->halo->set_keyword(arg[iarg],iarg+1 < narg ? arg[iarg+1] : NULL)) {
       // halo levels|single, halo_ratio Q: multilevel_halo.cpp
     } else {
@@ -56,6 +57,12 @@ void Neighbor::spacetree_settings(int narg, char **arg)
                "(known keywords: maxlevel, halo, halo_ratio)",arg[iarg]);
       error->all(FLERR,msg);
     }
+  }
+  try {
+    search.setMaxLevel(maxlevel);
+    search.setSkin(skin);  // fix spacetree's init (before Neighbor::init) reads eps
+  } catch (const std::exception &e) {
+    error->all(FLERR,e.what());
   }
 }
 
@@ -126,8 +133,14 @@ void Neighbor::spacetree_init()
     }
   }
 
-  // A fix spacetree (its init() ran before this one) supplies the adaptive grid.
-  spacetree->grid_fix = static_cast<FixSpacetree *>(modify->find_fix_style_strict("spacetree",0));
+  try {
+    spacetree->search.setSkin(skin);
+  } catch (const std::exception &e) {
+    error->all(FLERR,e.what());
+  }
+  // A fix spacetree chose the grid in its init() (before this one); without one, the tree
+  // builds on a cube of its own.
+  if (!modify->find_fix_style_strict("spacetree",0)) spacetree->search.dropGrid();
 
   // Mesh walls (fix neighlist/mesh) read the regular bins filled by the pair builder.
   spacetree->bins_for_meshes = false;
@@ -148,131 +161,77 @@ void Neighbor::spacetree_free()
 }
 
 /* ----------------------------------------------------------------------
-   granular half list, newton off, with contact history
+   the four steps of the granular list build
 ------------------------------------------------------------------------- */
 
-void Neighbor::granular_spacetree_no_newton(NeighList *list)
+namespace {
+
+// 2. Per-atom neighbour arrays (CSR) from the listed pairs, each sorted by index for a
+//    canonical order (touching pairs, stored as ~j, sort first; the order is deterministic).
+//    Returns the largest neighbour count of an atom.
+int per_atom_arrays(NeighSpacetree &st, int nlocal)
 {
-  NeighSpacetree &st = *spacetree;
-  if (st.bins_for_meshes) bin_atoms();
-
-  double **x = atom->x;
-  double *radius = atom->radius;
-  int *tag = atom->tag;
-  int *type = atom->type;
-  int *mask = atom->mask;
-  int *molecule = atom->molecule;
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-
-  // 1. Pairs from the tree. With contact_distance_factor 1 its cut-off is bit for bit the one
-  //    of granular_bin_no_newton; otherwise it is a superset (1e-12 relative) that is cut
-  //    again here with LIGGGHTS' expression.
-  // the tree works on contact radii: the atoms' radii unless contact_distance_factor scales them
-  const double *contact_radius = radius;
-  if (contactDistanceFactor != 1.0) {
-    st.contact_radius.resize(nall);
-    for (int i = 0; i < nall; i++) st.contact_radius[i] = radius[i]*contactDistanceFactor;
-    contact_radius = st.contact_radius.data();
-  }
-  st.options.epsilon = 0.5*skin;
-  try {
-    st.tree.setOptions(st.options);
-    const double (*xs)[3] = reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL);
-    if (st.grid_fix) {
-      // Ghost velocities exist only with `communicate ... vel yes`; without them the
-      // reluctant grid treats every close pair as approaching (more refinement, same lists).
-      const double (*vs)[3] = (nall && comm->ghost_velocity)
-        ? reinterpret_cast<const double (*)[3]>(atom->v[0]) : NULL;
-      st.grid_fix->build_tree(st.tree,xs,vs,contact_radius,nall,nlocal);
-    } else {
-      st.tree.build(xs,contact_radius,nall,nlocal);
-    }
-  } catch (const std::exception &e) {
-    error->one(FLERR,e.what());
-  }
-
-  st.pair_i.clear();
-  st.pair_j.clear();
+  const spacetree::NeighbourSearch::ListedPairs &pairs = st.pairs;
   st.first.assign(nlocal+1,0);
-  const double cdf = contactDistanceFactor, skin_ = skin;
-  const bool exact_cut = (cdf == 1.0 && 2.0*st.options.epsilon == skin);
-  const int exclude_ = exclude;
-  st.tree.forEachPairWithin([&](int a, int b, double rsq) {
-    // own/own pairs once under the lower index, own/ghost pairs under the owned atom
-    const int i = a < b ? a : b;
-    const int j = a < b ? b : a;
-    const double radsum = (radius[i] + radius[j]) * cdf;
-    if (!exact_cut) {
-      const double delx = x[i][0] - x[j][0];
-      const double dely = x[i][1] - x[j][1];
-      const double delz = x[i][2] - x[j][2];
-      rsq = delx*delx + dely*dely + delz*delz;
-      const double cutsq = (radsum+skin_) * (radsum+skin_);
-      if (rsq > cutsq) return;
-    }
-    if (exclude_ && exclusion(i,j,type[i],type[j],mask,molecule)) return;
-    // touching pairs carry contact history: remember which, as a sign bit on j
-    st.pair_i.push_back(i);
-    st.pair_j.push_back(rsq < radsum*radsum ? ~j : j);
-    st.first[i+1]++;
-  }, exact_cut ? 0.0 : 1e-12);
-
-  // The reluctant grid refines for the pairs this sweep found (used from the next build on).
-  if (st.grid_fix) {
-    try {
-      st.grid_fix->after_sweep(reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL),
-                               (nall && comm->ghost_velocity)
-                                 ? reinterpret_cast<const double (*)[3]>(atom->v[0]) : NULL,
-                               contact_radius,nall,st.pair_i,st.pair_j);
-    } catch (const std::exception &e) {
-      error->one(FLERR,e.what());
-    }
-  }
-
-  // 2. Per-atom neighbour arrays (CSR), each sorted by index for a canonical order
-  //    (touching pairs, stored as ~j, sort first; the order is still deterministic).
+  for (size_t p = 0; p < pairs.size(); p++) st.first[pairs.first[p]+1]++;
   int maxcount = 0;
   for (int i = 0; i < nlocal; i++) {
     maxcount = std::max(maxcount,st.first[i+1]);
     st.first[i+1] += st.first[i];
   }
-  st.neighbours.resize(st.pair_i.size());
+  st.neighbours.resize(pairs.size());
   st.fill.assign(st.first.begin(),st.first.end()-1);
-  for (size_t p = 0; p < st.pair_i.size(); p++)
-    st.neighbours[st.fill[st.pair_i[p]]++] = st.pair_j[p];
+  for (size_t p = 0; p < pairs.size(); p++)
+    st.neighbours[st.fill[pairs.first[p]]++] = pairs.second[p];
   for (int i = 0; i < nlocal; i++)
     std::sort(st.neighbours.begin()+st.first[i],st.neighbours.begin()+st.first[i+1]);
+  return maxcount;
+}
 
-  // 3. A big particle among thousands of small ones may exceed neigh_modify one:
-  //    size the pages from the tree instead of failing.
-  FixContactHistory *fix_history = list->fix_history;
-  NeighList *listgranhistory = fix_history ? list->listgranhistory : NULL;
-  if (maxcount > list->oneatom) {
-    const int one = maxcount + maxcount/4 + 16;
-    const int page = std::max(list->pgsize,10*one);
-    oneatom = std::max(oneatom,one);           // contact history follows at its next exchange
-    pgsize = std::max(pgsize,10*oneatom);
-    list->oneatom = one;
-    list->pgsize = page;
-    for (int t = 0; t < comm->nthreads; t++) list->ipage[t].init(one,page,1);
-    if (listgranhistory) {
-      const int dnum = listgranhistory->dnum;
-      listgranhistory->oneatom = one;
-      listgranhistory->pgsize = page;
-      for (int t = 0; t < comm->nthreads; t++) {
-        listgranhistory->ipage[t].init(one,page,1);
-        if (dnum) listgranhistory->dpage[t].init(dnum*one,dnum*page,1);
-      }
+// 3. A big particle among thousands of small ones may exceed neigh_modify one: size the pages
+//    (of the list and of its contact-history list) from the tree instead of failing. Returns
+//    the new `one` (0: the pages were big enough).
+int size_pages(NeighList *list, int maxcount, int nthreads)
+{
+  if (maxcount <= list->oneatom) return 0;
+  const int one = maxcount + maxcount/4 + 16;
+  const int page = std::max(list->pgsize,10*one);
+  list->oneatom = one;
+  list->pgsize = page;
+  for (int t = 0; t < nthreads; t++) list->ipage[t].init(one,page,1);
+  NeighList *history = list->fix_history ? list->listgranhistory : NULL;
+  if (history) {
+    const int dnum = history->dnum;
+    history->oneatom = one;
+    history->pgsize = page;
+    for (int t = 0; t < nthreads; t++) {
+      history->ipage[t].init(one,page,1);
+      if (dnum) history->dpage[t].init(dnum*one,dnum*page,1);
     }
   }
+  return one;
+}
 
-  // 4. Fill LIGGGHTS' pages exactly as granular_bin_no_newton does.
+// The touching partners of each owned atom and their history (fix contacthistory's arrays,
+// read by Neighbor, its friend).
+struct Partners {
+  int *count;
+  int **tag;
+  double **history;
+};
+
+// 4. LIGGGHTS' pages, filled exactly as granular_bin_no_newton fills them: per owned atom its
+//    neighbours and, with contact history, the touching partners' history (zeros for new ones).
+void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partners, const int *tag,
+                int nlocal, Error *error)
+{
   int *ilist = list->ilist;
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   MyPage<int> *ipage = list->ipage;
 
+  FixContactHistory *fix_history = list->fix_history;
+  NeighList *listgranhistory = fix_history ? list->listgranhistory : NULL;
   int *npartner = NULL, **partner = NULL;
   double **contacthistory = NULL;
   int **first_contact_flag = NULL;
@@ -281,9 +240,9 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   MyPage<double> *dpage_contact_hist = NULL;
   int dnum = 0;
   if (fix_history) {
-    npartner = fix_history->npartner_;
-    partner = fix_history->partner_;
-    contacthistory = fix_history->contacthistory_;
+    npartner = partners.count;
+    partner = partners.tag;
+    contacthistory = partners.history;
     first_contact_flag = listgranhistory->firstneigh;
     first_contact_hist = listgranhistory->firstdouble;
     ipage_contact_flag = listgranhistory->ipage;
@@ -346,4 +305,77 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   }
 
   list->inum = inum;
+}
+
+}
+
+/* ----------------------------------------------------------------------
+   granular half list, newton off, with contact history
+------------------------------------------------------------------------- */
+
+void Neighbor::granular_spacetree_no_newton(NeighList *list)
+{
+  NeighSpacetree &st = *spacetree;
+  if (st.bins_for_meshes) bin_atoms();
+
+  double **x = atom->x;
+  double *radius = atom->radius;
+  int *type = atom->type;
+  int *mask = atom->mask;
+  int *molecule = atom->molecule;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+
+  // 1. The pairs, from the core search (grid update, tree, sweep, refinement). With
+  //    contact_distance_factor 1 its cut-off is bit for bit the one of granular_bin_no_newton;
+  //    otherwise it is a superset (1e-12 relative) that is cut again here with LIGGGHTS'
+  //    expression. The tree works on contact radii: the atoms' radii unless
+  //    contact_distance_factor scales them.
+  const double *contact_radius = radius;
+  if (contactDistanceFactor != 1.0) {
+    st.contact_radius.resize(nall);
+    for (int i = 0; i < nall; i++) st.contact_radius[i] = radius[i]*contactDistanceFactor;
+    contact_radius = st.contact_radius.data();
+  }
+  const double cdf = contactDistanceFactor, skin_ = skin;
+  const bool exact_cut = (cdf == 1.0 && 2.0*st.search.epsilon() == skin);
+  const int exclude_ = exclude;
+  using Verdict = spacetree::NeighbourSearch::Verdict;
+  auto judge = [&](int i, int j, double rsq) {
+    // own/own pairs once under the lower index, own/ghost pairs under the owned atom
+    const double radsum = (radius[i] + radius[j]) * cdf;
+    if (!exact_cut) {
+      const double delx = x[i][0] - x[j][0];
+      const double dely = x[i][1] - x[j][1];
+      const double delz = x[i][2] - x[j][2];
+      rsq = delx*delx + dely*dely + delz*delz;
+      const double cutsq = (radsum+skin_) * (radsum+skin_);
+      if (rsq > cutsq) return Verdict::Skip;
+    }
+    if (exclude_ && exclusion(i,j,type[i],type[j],mask,molecule)) return Verdict::Skip;
+    // touching pairs carry contact history: marked
+    return rsq < radsum*radsum ? Verdict::KeepMarked : Verdict::Keep;
+  };
+  // Ghost velocities exist only with `communicate ... vel yes`; without them the reluctant
+  // grid treats every close pair as approaching (more refinement, same lists).
+  const double (*xs)[3] = reinterpret_cast<const double (*)[3]>(nall ? x[0] : NULL);
+  const double (*vs)[3] = (nall && comm->ghost_velocity)
+    ? reinterpret_cast<const double (*)[3]>(atom->v[0]) : NULL;
+  try {
+    st.search.findPairs(xs,vs,contact_radius,nall,nlocal,exact_cut ? 0.0 : 1e-12,judge,st.pairs);
+  } catch (const std::exception &e) {
+    error->one(FLERR,e.what());
+  }
+
+  // 2.-4.
+  const int maxcount = per_atom_arrays(st,nlocal);
+  const int one = size_pages(list,maxcount,comm->nthreads);
+  if (one) {
+    oneatom = std::max(oneatom,one);  // contact history follows at its next exchange
+    pgsize = std::max(pgsize,10*oneatom);
+  }
+  Partners partners = {NULL,NULL,NULL};
+  if (FixContactHistory *f = list->fix_history)
+    partners = Partners{f->npartner_,f->partner_,f->contacthistory_};
+  fill_pages(list,st,partners,atom->tag,nlocal,error);
 }

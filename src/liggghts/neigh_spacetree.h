@@ -1,6 +1,7 @@
 /* spacetree-dem: state behind `neighbor <skin> spacetree [keyword value ...]`.
-   Owned by LAMMPS_NS::Neighbor (pointer `spacetree`, see liggghts_patch/). The
-   search itself lives in the LIGGGHTS-independent core (src/core/tree). */
+   Owned by LAMMPS_NS::Neighbor (pointer `spacetree`, see liggghts_patch/). The search
+   itself (grid update, tree, sweep, refinement) is the LIGGGHTS-independent core object
+   spacetree::NeighbourSearch (src/core/tree); fix spacetree chooses its grid. */
 
 #ifndef LMP_NEIGH_SPACETREE_H
 #define LMP_NEIGH_SPACETREE_H
@@ -9,30 +10,26 @@
 #include <vector>
 
 #include "multilevel_halo.h"
-#include "tree/Spacetree.h"
+#include "tree/NeighbourSearch.h"
 
 namespace LAMMPS_NS {
 
-class FixSpacetree;
-
 class NeighSpacetree {
  public:
-  spacetree::SpacetreeOptions options;  // epsilon is set from the skin at each build
-  spacetree::Spacetree tree;
+  spacetree::NeighbourSearch search;    // eps = skin/2, maxlevel, the optional adaptive grid
   bool bins_for_meshes = false;         // a mesh wall reads Neighbor's bins
-  FixSpacetree *grid_fix = nullptr;     // fix spacetree: persistent adaptive grid (else regular)
   std::unique_ptr<MultilevelHalo> halo; // per-size ghost rule (keywords halo, halo_ratio)
 
   // Scratch of the list build, kept between builds to avoid reallocation.
   std::vector<double> contact_radius;   // radius * contact_distance_factor
+  spacetree::NeighbourSearch::ListedPairs pairs;  // second marked (~j): touching
   std::vector<int> first;               // CSR offsets of each owned atom's neighbours
   std::vector<int> fill;
   std::vector<int> neighbours;
-  std::vector<int> pair_i, pair_j;
 
   // Mesh size of the finest cell that hosts a particle at the last build (0 before any); with
   // fix spacetree the tree is built on that grid's hosts, so it is the grid's finest such cell.
-  double finest_cell() const { return tree.finestPopulatedMeshSize(); }
+  double finest_cell() const { return search.finestCell(); }
 };
 
 }  // namespace LAMMPS_NS

@@ -17,9 +17,12 @@
 #include "atom.h"
 #include "comm.h"
 #include "contact/MeshContact.h"
+#include "contact_model/ContactHistory.h"
 #include "contact_model/ContactModel.h"
+#include "contact_model/SubModelRegistry.h"
 #include "dynamics/RigidBody.h"
 #include "error.h"
+#include "fix_trimesh_contact_history.h"
 #include "fix_trimesh_state.h"
 #include "fix_trimesh_template.h"
 #include "force.h"
@@ -29,6 +32,7 @@
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
+#include "trimesh_contact_coefficients.h"
 #include "trimesh_deck_checks.h"
 #include "trimesh_parallel_contacts.h"
 #include "update.h"
@@ -55,6 +59,14 @@ dy::RigidBody body(const TrimeshTypeTemplate &tt, const ct::Pose &pose, const do
   return b;
 }
 
+// Whether a word is a number (a keyword's optional value follows).
+bool is_number(const char *word)
+{
+  char *end = NULL;
+  strtod(word,&end);
+  return end != word && *end == '\0';
+}
+
 // Upper limit of penalty Newton steps (stage 1 + stage 2): the core's kMaxNewtonIterations.
 const int kMaxNewtonSteps = spacetree::geometry::kMaxNewtonIterations;
 
@@ -63,18 +75,23 @@ const int kMaxNewtonSteps = spacetree::geometry::kMaxNewtonIterations;
 namespace LAMMPS_NS {
 struct PairTrimeshModel {
   ct::MeshContactOptions contact;
-  double stiffness = 0.0, damping = 0.0;        // eq. (1): S, D
-  double friction = 0.0, sliding_damping = 0.0; // Coulomb mu, viscous gamma
   bool rotation = true;
-  cm::ContactModelSpec spec;                    // sub-models (core contact_model/)
-  cm::ContactParameters parameters;             // their coefficients (every type pair)
+  TrimeshContactSettings settings;              // sub-models and explicit coefficients
   cm::ContactModelTable models;                 // one per type pair, built at init
+  FixTrimeshContactHistory *history = NULL;     // per-contact history (sub-models that keep it)
+  std::unique_ptr<cm::ContactHistoryMatcher> matcher;
+  std::vector<double> records;                  // one pair's new history records
 
   int threads = 0;                              // threads keyword: 0 = TBB default, 1 = serial
   std::unique_ptr<TrimeshParallelContacts> search;
   std::vector<TrimeshCandidatePair> pairs;
   ct::MeshContactStatistics stats;
 };
+}
+
+namespace {
+// The fix holding the per-contact history (ID and style: a restart file restores it by both).
+const char *const kHistoryFixId = "trimesh_contact_history";
 }
 
 PairTrimesh::PairTrimesh(LAMMPS *lmp) :
@@ -105,8 +122,13 @@ void PairTrimesh::allocate()
 
 void PairTrimesh::settings(int narg, char **arg)
 {
-  bool have_eps = false, have_s = false, have_d = false;
-  bool have_continuation = false;
+  // a repeated pair_style line starts from the defaults
+  model->settings = TrimeshContactSettings();
+  model->contact = ct::MeshContactOptions();
+  model->rotation = true;
+  model->threads = 0;
+  TrimeshContactSettings &cs = model->settings;
+  bool have_eps = false, have_continuation = false, have_tangential = false;
   // a Newton step count: an integer >= lo (the sum with the other stage is checked below)
   const auto newton_steps = [&](const char *kw, const char *val, long lo) {
     char *end = NULL;
@@ -119,6 +141,24 @@ void PairTrimesh::settings(int narg, char **arg)
     }
     return int(n);
   };
+  // a coefficient: a finite number > 0 (or >= 0)
+  const auto coefficient = [&](const char *kw, const char *val, bool positive) {
+    const double v = force->numeric(FLERR,val);
+    if (!std::isfinite(v) || v < 0.0 || (positive && v == 0.0)) {
+      std::string msg = std::string("Illegal pair_style trimesh command: ") + kw + " '" + val +
+                        "' must be a finite number " + (positive ? "> 0" : ">= 0");
+      error->all(FLERR,msg.c_str());
+    }
+    return v;
+  };
+  // a sub-model keyword of a slot (the core's registry names the choices)
+  const auto sub_model = [&](cm::Slot slot, const char *val) {
+    try { cm::findSubModel(slot,val); }
+    catch (const std::exception &e) {
+      error->all(FLERR,(std::string("Illegal pair_style trimesh command: ") + e.what()).c_str());
+    }
+    cs.spec[slot] = val;
+  };
   int iarg = 0;
   while (iarg < narg) {
     const char *kw = arg[iarg];
@@ -127,15 +167,23 @@ void PairTrimesh::settings(int narg, char **arg)
       error->all(FLERR,msg.c_str());
     }
     const char *val = arg[iarg+1];
-    if (strcmp(kw,"eps") == 0) { model->contact.epsilon = force->numeric(FLERR,val); have_eps = true; }
-    else if (strcmp(kw,"stiffness") == 0) { model->stiffness = force->numeric(FLERR,val); have_s = true; }
-    else if (strcmp(kw,"damping") == 0) { model->damping = force->numeric(FLERR,val); have_d = true; }
+    if (strcmp(kw,"eps") == 0) { model->contact.epsilon = coefficient(kw,val,true); have_eps = true; }
+    else if (strcmp(kw,"stiffness") == 0) cs.stiffness = coefficient(kw,val,true);
+    else if (strcmp(kw,"damping") == 0) cs.damping = coefficient(kw,val,false);
     else if (strcmp(kw,"friction") == 0) {
-      if (iarg+3 > narg) error->all(FLERR,"Illegal pair_style trimesh command: friction needs MU GAMMA");
-      model->friction = force->numeric(FLERR,val);
-      model->sliding_damping = force->numeric(FLERR,arg[iarg+2]);
-      iarg++;
-    } else if (strcmp(kw,"method") == 0) {
+      cs.friction = coefficient("friction MU",val,false);
+      // GAMMA (the viscous model's sliding coefficient) when a number follows
+      if (iarg+2 < narg && is_number(arg[iarg+2])) {
+        cs.sliding_damping = coefficient("friction GAMMA",arg[iarg+2],false);
+        iarg++;
+      }
+    } else if (strcmp(kw,"tangential_stiffness") == 0) cs.tangential_stiffness = coefficient(kw,val,true);
+    else if (strcmp(kw,"model") == 0) sub_model(cm::Slot::Normal,val);
+    else if (strcmp(kw,"damping_model") == 0) sub_model(cm::Slot::Damping,val);
+    else if (strcmp(kw,"tangential") == 0) { sub_model(cm::Slot::Tangential,val); have_tangential = true; }
+    else if (strcmp(kw,"rolling_friction") == 0) sub_model(cm::Slot::Rolling,val);
+    else if (strcmp(kw,"cohesion") == 0) sub_model(cm::Slot::Cohesion,val);
+    else if (strcmp(kw,"method") == 0) {
       try { model->contact.method = ct::parseTriangleDistanceMethod(val); }
       catch (const std::exception &) {
         std::string msg = std::string("Illegal pair_style trimesh command: method '") + val +
@@ -166,13 +214,27 @@ void PairTrimesh::settings(int narg, char **arg)
     }
     iarg += 2;
   }
-  if (!have_eps || !have_s || !have_d)
-    error->all(FLERR,"Illegal pair_style trimesh command: eps, stiffness and damping are required");
-  if (!(model->contact.epsilon > 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: eps must be > 0");
-  if (!(model->stiffness > 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: stiffness must be > 0");
-  if (!(model->damping >= 0.0)) error->all(FLERR,"Illegal pair_style trimesh command: damping must be >= 0");
-  if (!(model->friction >= 0.0) || !(model->sliding_damping >= 0.0))
-    error->all(FLERR,"Illegal pair_style trimesh command: friction MU GAMMA must be >= 0");
+  if (!have_eps) error->all(FLERR,"Illegal pair_style trimesh command: eps is required");
+  cs.eps = model->contact.epsilon;
+  // `friction MU GAMMA` alone: the viscous model of eq. (1) (none unless both are > 0)
+  if (!have_tangential && !std::isnan(cs.friction) && !std::isnan(cs.sliding_damping) &&
+      cs.friction > 0.0 && cs.sliding_damping > 0.0)
+    cs.spec.tangential = "viscous";
+  if (cs.spec.tangential == "viscous" && std::isnan(cs.sliding_damping))
+    error->all(FLERR,"Illegal pair_style trimesh command: tangential viscous needs friction MU GAMMA "
+               "(GAMMA: sliding damping, N s/m)");
+  if (cs.spec.tangential != "viscous" && have_tangential && !std::isnan(cs.sliding_damping))
+    error->all(FLERR,"Illegal pair_style trimesh command: friction MU GAMMA: GAMMA is the sliding damping "
+               "of tangential viscous (give friction MU alone)");
+  if (cs.spec.tangential != "history" && !std::isnan(cs.tangential_stiffness))
+    error->all(FLERR,"Illegal pair_style trimesh command: tangential_stiffness needs tangential history");
+  if (cs.spec.damping == "none" && !std::isnan(cs.damping))
+    error->all(FLERR,"Illegal pair_style trimesh command: damping D with damping_model none");
+  // the history store exists from here on (thermo may name it; a restart file fills it)
+  if (cm::historySizeOf(cs.spec) > 0 && modify->find_fix(kHistoryFixId) < 0) {
+    char *fixarg[3] = {(char *) kHistoryFixId,(char *) "all",(char *) "trimesh/contact_history"};
+    modify->add_fix(3,fixarg);
+  }
   // Newton steps, defaults resolved by the core (penalty 8; hybrid 5 + 4, the two-stage hybrid)
   const ct::TriangleDistanceMethod method = model->contact.method;
   if (have_continuation && method != ct::TriangleDistanceMethod::Hybrid)
@@ -184,20 +246,6 @@ void PairTrimesh::settings(int narg, char **arg)
     snprintf(msg,sizeof(msg),"Illegal pair_style trimesh command: iterations %d + continuation %d "
              "must be <= %d Newton steps",stage1,stage2,kMaxNewtonSteps);
     error->all(FLERR,msg);
-  }
-  // the contact model: eq. (1), plus viscous friction with `friction MU GAMMA`
-  model->spec = cm::ContactModelSpec();
-  model->parameters = cm::ContactParameters();
-  model->parameters.set("stiffness",model->stiffness);
-  model->parameters.set("damping",model->damping);
-  if (model->friction > 0.0 && model->sliding_damping > 0.0) {
-    model->spec.tangential = "viscous";
-    model->parameters.set("friction",model->friction);
-    model->parameters.set("slidingDamping",model->sliding_damping);
-  }
-  try { cm::ContactModel probe(model->spec,model->parameters); }
-  catch (const std::exception &e) {
-    error->all(FLERR,(std::string("Illegal pair_style trimesh command: ") + e.what()).c_str());
   }
   // threads 0: TBB's default is every core this process may use; ranks that share a node share
   // those cores, so each takes its part (no oversubscription with several ranks per node)
@@ -246,16 +294,19 @@ void PairTrimesh::init_style()
   if (comm->ghost_velocity == 0)
     error->all(FLERR,"Pair style trimesh requires ghost atoms store velocity: use 'communicate single vel yes'");
   if (force->newton_pair)
-    error->all(FLERR,"Pair style trimesh requires newton off (granular half list, forces on owned atoms)");
+    error->all(FLERR,model->settings.spec.tangential == "history"
+               ? "Pair style trimesh requires newton off (granular half list, forces on owned atoms; "
+                 "tangential history is kept on the owned atoms of each pair)"
+               : "Pair style trimesh requires newton off (granular half list, forces on owned atoms)");
 
   templ = FixTrimeshTemplate::find(lmp,"Pair style trimesh");
   if (!templ) error->all(FLERR,"Pair style trimesh requires fix trimesh/template");
-  try {
-    const cm::ContactParameters &p = model->parameters;
-    model->models = cm::ContactModelTable(atom->ntypes,model->spec,[&p](int,int) { return p; });
-  } catch (const std::exception &e) {
-    error->all(FLERR,(std::string("Pair style trimesh: ") + e.what()).c_str());
-  }
+
+  // the contact model of every type pair, from the keywords and the materials
+  TrimeshContactCoefficients coefficients(lmp);
+  model->models = coefficients.build(model->settings,templ);
+  coefficients.report(model->models,model->settings,templ);
+  setup_history();
 
   templ->set_halo(model->contact.epsilon);
   templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
@@ -265,6 +316,25 @@ void PairTrimesh::init_style()
   const int irequest = neighbor->request(this);
   neighbor->requests[irequest]->half = 0;
   neighbor->requests[irequest]->gran = 1;
+}
+
+/* The fix holding the per-contact history when the contact model keeps any (created by
+   settings(); a restart file restores it when its ID and style match); none otherwise. */
+void PairTrimesh::setup_history()
+{
+  const int size = model->models.historySize();
+  model->history = NULL;
+  model->matcher.reset();
+  if (size == 0) return;
+  const int ifix = modify->find_fix(kHistoryFixId);
+  if (ifix >= 0) model->history = dynamic_cast<FixTrimeshContactHistory*>(modify->fix[ifix]);
+  if (!model->history)
+    error->all(FLERR,"Pair style trimesh: fix trimesh_contact_history (its per-contact history) was "
+               "deleted or is not trimesh/contact_history");
+  cm::ContactHistoryMatchOptions match;
+  match.normalCosine = model->contact.mergeNormalCosine;
+  model->matcher.reset(new cm::ContactHistoryMatcher(size,match));
+  model->history->set_record_size(model->matcher->recordSize());
 }
 
 void PairTrimesh::init_list(int, NeighList *ptr)
@@ -367,39 +437,68 @@ void PairTrimesh::compute(int eflag, int vflag)
     error->one(FLERR,(std::string("pair_style trimesh: contact search failed: ") + e.what()).c_str());
   }
 
+  // Forces, candidate by candidate and contact by contact in list order. With history: the
+  // pair's previous records come from an owned atom of the pair, are matched to this step's
+  // contact points, advance with them and are stored on every owned atom of the pair; pairs
+  // that are not in contact any more leave nothing (finish). A run's setup repeats the last
+  // force computation: dt 0 leaves the history as it is (LIGGGHTS' shearupdate 0).
+  FixTrimeshContactHistory *history = model->history;
+  cm::ContactHistoryMatcher *matcher = model->matcher.get();
+  const double history_dt = update->setupflag ? 0.0 : dt;
+  if (history) history->begin();
   for (std::size_t kp = 0; kp < model->pairs.size(); kp++) {
     const std::vector<ct::ContactPoint> &contacts = model->search->contacts(kp);
     if (contacts.empty()) continue;
-    {
-      const TrimeshCandidatePair &p = model->pairs[kp];
-      const int a = p.a, b = p.b;
-      const ct::Pose &pa = p.pose_a, &pb = p.pose_b;
-      const TrimeshTypeTemplate *ta = templ->type_template(type[a]), *tb = templ->type_template(type[b]);
-      dy::RigidBody ba = body(*ta,pa,v[a],omega[a],rmass[a],rotation);
-      dy::RigidBody bb = body(*tb,pb,v[b],omega[b],rmass[b],rotation);
-      const cm::ContactModel &law = model->models.at(type[a],type[b]);
-      // i is owned; j only where newton off lets this rank add to it
-      const bool a_owned = force->newton_pair || a < nlocal;
-      const bool b_owned = force->newton_pair || b < nlocal;
+    const TrimeshCandidatePair &p = model->pairs[kp];
+    const int a = p.a, b = p.b;
+    const ct::Pose &pa = p.pose_a, &pb = p.pose_b;
+    const TrimeshTypeTemplate *ta = templ->type_template(type[a]), *tb = templ->type_template(type[b]);
+    dy::RigidBody ba = body(*ta,pa,v[a],omega[a],rmass[a],rotation);
+    dy::RigidBody bb = body(*tb,pb,v[b],omega[b],rmass[b],rotation);
+    const cm::ContactModel &law = model->models.at(type[a],type[b]);
+    // i is owned; j only where newton off lets this rank add to it
+    const bool a_owned = force->newton_pair || a < nlocal;
+    const bool b_owned = force->newton_pair || b < nlocal;
 
-      for (const ct::ContactPoint &c : contacts) {
-        stat_max_penetration = std::max(stat_max_penetration,c.penetration);
-        const cm::Contact k = cm::makeContact(ba,bb,c.point,c.normal,c.penetration);
-        // on the first body; the second gets -fa
-        const Eigen::Vector3d fa = law.evaluate(k,nullptr,dt).forceOnFirst;
-        if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
-        if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
-        if (rotation) {
-          if (a_owned) {
-            const Eigen::Vector3d tq = (c.point - pa.position).cross(fa);
-            torque[a][0] += tq[0]; torque[a][1] += tq[1]; torque[a][2] += tq[2];
-          }
-          if (b_owned) {
-            const Eigen::Vector3d tq = (c.point - pb.position).cross(-fa);
-            torque[b][0] += tq[0]; torque[b][1] += tq[1]; torque[b][2] += tq[2];
-          }
+    double *slots = NULL;
+    int stride = 0;
+    if (history) {
+      const int owner = a_owned ? a : b, partner = a_owned ? tag[b] : tag[a];
+      int count = 0;
+      const double *previous = history->lookup(owner,partner,count);
+      matcher->setDistance(0.5 * std::min(ta->shape.minimumEdgeLength,tb->shape.minimumEdgeLength));
+      matcher->match(previous,std::size_t(count),contacts,pa,model->records);
+      slots = model->records.data() + cm::kContactAnchorDoubles;
+      stride = matcher->recordSize();
+    }
+
+    for (std::size_t kc = 0; kc < contacts.size(); kc++) {
+      const ct::ContactPoint &c = contacts[kc];
+      stat_max_penetration = std::max(stat_max_penetration,c.penetration);
+      const cm::Contact k = cm::makeContact(ba,bb,c.point,c.normal,c.penetration);
+      // on the first body; the second gets -fa (and -ta)
+      const cm::ContactForces out = law.evaluate(k,slots ? slots + kc*stride : NULL,history_dt);
+      const Eigen::Vector3d &fa = out.forceOnFirst;
+      if (a_owned) { f[a][0] += fa[0]; f[a][1] += fa[1]; f[a][2] += fa[2]; }
+      if (b_owned) { f[b][0] -= fa[0]; f[b][1] -= fa[1]; f[b][2] -= fa[2]; }
+      if (rotation) {
+        if (a_owned) {
+          Eigen::Vector3d tq = (c.point - pa.position).cross(fa);
+          if (law.rolling()) tq += out.torqueOnFirst;
+          torque[a][0] += tq[0]; torque[a][1] += tq[1]; torque[a][2] += tq[2];
+        }
+        if (b_owned) {
+          Eigen::Vector3d tq = (c.point - pb.position).cross(-fa);
+          if (law.rolling()) tq -= out.torqueOnFirst;
+          torque[b][0] += tq[0]; torque[b][1] += tq[1]; torque[b][2] += tq[2];
         }
       }
     }
+    if (history) {
+      const int n = int(contacts.size());
+      if (a_owned) history->store(a,tag[b],model->records.data(),n);
+      if (b_owned) history->store(b,tag[a],model->records.data(),n);
+    }
   }
+  if (history) history->finish();
 }

@@ -1,22 +1,24 @@
 /* spacetree-dem: contacts of triangulated rigid particles (paper §3, §6.2; core:
-   src/core/contact/MeshContact, src/core/contact_model/ContactModel).
+   src/core/contact/MeshContact, src/core/contact_model/ContactModel). Syntax and units:
+   docs/pair_trimesh.md.
 
-     pair_style trimesh eps E stiffness S damping D [method exact|penalty|hybrid]
-                        [iterations K] [continuation C] [friction MU GAMMA] [rotation yes|no]
-                        [threads N]
+     pair_style trimesh eps E [model halo] [damping_model approach|none]
+                        [tangential none|viscous|history] [rolling_friction none]
+                        [cohesion none|sjkr] [stiffness S] [damping D] [friction MU [GAMMA]]
+                        [tangential_stiffness KT] [method exact|penalty|hybrid] [iterations K]
+                        [continuation C] [rotation yes|no] [threads N]
      pair_coeff * *
 
    Candidate pairs come from a granular half list (newton off; `neighbor ... bin` or
    `neighbor ... spacetree`) built on radius = bounding radius + E. Per pair: bounding-sphere
-   precheck |xi - xj| < Ri + Rj + 2E, then the core's triangle checks; a contact where two
-   surfaces are closer than 2E, force per eq. (1) (core ContactModel): spring on the halo
-   overlap plus damping while approaching; Coulomb friction only with `friction MU`, torques
-   and angular velocities only with `rotation yes` (default). Obstacles (fixed template
-   types) have infinite mass. Statistics: compute trimesh/contacts. `threads N`: the triangle
-   checks of a step as TBB tasks on N threads (0 = TBB default, 1 = serial; same trajectory bit
-   for bit, trimesh_parallel_contacts.h). Newton steps of the penalty kernel: `iterations K`
-   (penalty: default 8; hybrid stage 1: default 5), `continuation C` (hybrid only: C more steps
-   for the pairs stage 1 leaves uncertified, default 4, 0 = single stage; K + C <= 32). */
+   precheck |xi - xj| < Ri + Rj + 2E, then the core's triangle checks (serially or as TBB tasks,
+   trimesh_parallel_contacts.h); forces per contact point from the core's ContactModel of the
+   type pair (sub-models named by the keywords, coefficients from the keywords or the LIGGGHTS
+   materials: trimesh_contact_coefficients.h). Sub-models with per-contact history (tangential
+   history) keep it in fix trimesh_contact_history, per particle pair on the owned atoms
+   (fix_trimesh_contact_history.h), matched step to step by the core's ContactHistoryMatcher.
+   Torques and angular velocities only with `rotation yes` (default). Obstacles (fixed template
+   types) have infinite mass. Statistics: compute trimesh/contacts. */
 
 #ifdef PAIR_CLASS
 
@@ -69,6 +71,7 @@ class PairTrimesh : public Pair {
 
  private:
   void allocate();
+  void setup_history();
 
   std::unique_ptr<PairTrimeshModel> model;
   class FixTrimeshTemplate *templ;

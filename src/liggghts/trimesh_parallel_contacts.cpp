@@ -8,7 +8,6 @@
 
 #include <stdexcept>
 
-#include "parallel/PairCheck.h"
 #include "parallel/TaskParallelPairChecks.h"
 
 using namespace LAMMPS_NS;
@@ -38,39 +37,26 @@ namespace {
 // engine's default of 4096 (docs/task_parallelism.md, Measured).
 constexpr std::size_t kTaskTrianglePairs = 32768;
 
-// Candidate k as engine particles 2k (body a) and 2k+1 (body b); whole pairs only.
-class CandidatePairCheck : public pl::PairCheck {
+// Candidate k of the list as one unit of the engine's candidate sweep; its contacts go to
+// found_[k], written by the one task that checks it.
+class CandidatePairCheck : public pl::CandidateCheck {
  public:
   CandidatePairCheck(std::vector<std::vector<ct::ContactPoint>> &found,
                      const ct::MeshContactOptions &options)
       : found_(found), threadStates_(options) {}
   void set_pairs(const std::vector<TrimeshCandidatePair> &pairs) { pairs_ = &pairs; }
 
-  std::size_t triangleCount(int particle) const override {
-    const TrimeshCandidatePair &p = (*pairs_)[std::size_t(particle / 2)];
-    return (particle % 2 == 0 ? p.shape_a : p.shape_b)->triangleCount();
+  std::size_t work(std::size_t k) const override {
+    const TrimeshCandidatePair &p = (*pairs_)[k];
+    return p.shape_a->triangleCount() * p.shape_b->triangleCount();
   }
-  bool splittable() const override { return false; }
 
-  void check(int first, int second, std::size_t, std::size_t, pl::ContactSink &sink) const override {
-    const std::size_t k = std::size_t(first / 2);
-    if (first % 2 != 0 || second != first + 1)
-      throw std::logic_error("trimesh parallel contacts: engine pair is not a candidate pair");
+  void check(std::size_t k) const override {
     const TrimeshCandidatePair &p = (*pairs_)[k];
     ThreadState &state = threadStates_.local();
-    // found_[k] belongs to this task alone: every pair is searched by exactly one task
     std::vector<ct::ContactPoint> &out = found_[k];
     out.clear();
     state.finder.find(*p.shape_a,p.pose_a,*p.shape_b,p.pose_b,out,&state.statistics);
-    for (std::size_t c = 0; c < out.size(); c++) {
-      pl::TriangleContact tc;
-      tc.first = first;
-      tc.second = second;
-      tc.firstTriangle = int(c);   // canonical order within the pair = the search's order
-      tc.distance = out[c].distance;
-      tc.normal = out[c].normal;
-      sink.add(tc);
-    }
   }
 
   ct::MeshContactStatistics take_statistics() {
@@ -105,7 +91,6 @@ struct TrimeshParallelContacts::Engine {
   std::unique_ptr<tbb::global_control> allow;
   pl::TaskParallelPairChecks tasks;
   CandidatePairCheck check;
-  std::vector<pl::TriangleContact> canonical;
 };
 
 TrimeshParallelContacts::TrimeshParallelContacts(const ct::MeshContactOptions &options, int threads)
@@ -145,20 +130,6 @@ void TrimeshParallelContacts::search(const std::vector<TrimeshCandidatePair> &pa
     return;
   }
   engine_->check.set_pairs(pairs);
-  const int n = int(pairs.size());
-  engine_->tasks.run([n](auto &emit) { for (int k = 0; k < n; k++) emit(2*k,2*k+1); },
-                     engine_->check,engine_->canonical);
+  engine_->tasks.runCandidates(pairs.size(),engine_->check);
   stats += engine_->check.take_statistics();
-  // forces follow contacts(k) in k order: that must be the engine's canonical order
-  std::size_t expected = 0;
-  for (std::size_t k = 0; k < pairs.size(); k++) expected += found_[k].size();
-  if (expected != engine_->canonical.size())
-    throw std::logic_error("trimesh parallel contacts: canonical contacts != searched contacts");
-  std::size_t i = 0;
-  for (std::size_t k = 0; k < pairs.size(); k++)
-    for (std::size_t c = 0; c < found_[k].size(); c++, i++) {
-      const pl::TriangleContact &tc = engine_->canonical[i];
-      if (tc.first != int(2*k) || tc.firstTriangle != int(c))
-        throw std::logic_error("trimesh parallel contacts: contacts out of canonical order");
-    }
 }

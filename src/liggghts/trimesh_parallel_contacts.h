@@ -1,16 +1,13 @@
 /* spacetree-dem: the contact search of pair_style trimesh over the candidate pairs of one
    compute() (neighbour-list pairs that passed the bounding-sphere precheck, in neighbour-list
    order, each in the pair style's canonical body order). With 1 thread the pairs are searched
-   one after the other on the calling thread (the serial path); otherwise they become pair-check
-   tasks of the core engine (parallel/TaskParallelPairChecks: the list is the producer, tasks of
-   whole pairs run on a TBB arena, one join per compute).
-   Candidate k is "particle pair" (2k, 2k+1) of the engine and its contact c is reported as
-   triangle pair (c, 0), so the engine's canonical order (first, second, firstTriangle, ...) is
-   (k, c): the neighbour-list order of the serial path. The pair style applies forces in that
-   order, so forces, torques and trajectories are bit-identical for any thread count. Each pair's
-   ContactPoints are written by the one task that searches it (pairs are never split), so the
-   full points reach the force law without a lock. Not LIGGGHTS-specific, but kept next to the
-   only adapter that uses it. */
+   one after the other on the calling thread (the serial path); otherwise they are checked by the
+   core engine's candidate sweep (parallel/TaskParallelPairChecks::runCandidates: consecutive
+   candidates gathered into tasks of whole pairs on a TBB arena, one join per compute). Each
+   candidate's ContactPoints are written to its own slot by the one task that checks it, so the
+   pair style applies forces in list order, candidate by candidate, as on the serial path:
+   forces, torques and trajectories are bit-identical for any thread count. Not
+   LIGGGHTS-specific, but kept next to the only adapter that uses it. */
 
 #ifndef LMP_TRIMESH_PARALLEL_CONTACTS_H
 #define LMP_TRIMESH_PARALLEL_CONTACTS_H

@@ -6,10 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
+#include "contact_model/ContactHistory.h"
 #include "contact_model/ContactModel.h"
 #include "contact_model/DampingApproach.h"
+#include "contact_model/MaterialMapping.h"
 #include "contact_model/SubModelRegistry.h"
 #include "dynamics/ContactForce.h"
 
@@ -190,4 +193,246 @@ TEST(ContactModel, ClosedFormRestitutionMatchesIntegration) {
   EXPECT_GT(springDashpotRestitution(0.99), springDashpotRestitution(1.01));
 }
 
+}  // namespace
+
+namespace {
+
+ContactParameters historyParameters(double mu, double kt, double dt) {
+  ContactParameters p = eq1(1e4, 0.0);
+  p.set("friction", mu);
+  p.set("tangentialStiffness", kt);
+  p.set("tangentialDamping", dt);
+  return p;
+}
+
+ContactModelSpec historySpec() {
+  ContactModelSpec spec;
+  spec.tangential = "history";
+  return spec;
+}
+
+TEST(ContactModel, TangentialSpringHoldsUpToTheCoulombCapThenSlides) {
+  const ContactModel model(historySpec(), historyParameters(0.5, 2e3, 0.0));
+  ASSERT_EQ(model.historySize(), 3);
+  Contact k;
+  k.normal = Vector3d::UnitZ();
+  k.penetration = 1e-3;  // F = 10 N, cap 5 N
+  k.effectiveMass = 1.0;
+  double xi[3] = {0, 0, 0};
+  const double dt = 1e-3;
+  // j slides along +x at 0.1 m/s relative to i: i is pulled along +x by k_t xi
+  k.relativeVelocity = Vector3d(0.1, 0, 0);
+  ContactForces f;
+  for (int s = 0; s < 10; ++s) f = model.evaluate(k, xi, dt);
+  EXPECT_NEAR(xi[0], 10 * 0.1 * dt, 1e-15);
+  EXPECT_NEAR(f.forceOnFirst.x(), 2e3 * 1e-3, 1e-12);  // 2 N < 5 N: spring
+  EXPECT_NEAR(f.forceOnFirst.z(), -10.0, 1e-12);
+  // at rest the spring keeps its force (static friction); the viscous model would give 0
+  k.relativeVelocity = Vector3d::Zero();
+  f = model.evaluate(k, xi, dt);
+  EXPECT_NEAR(f.forceOnFirst.x(), 2.0, 1e-12);
+  // more displacement: capped at mu F = 5 N, xi rescaled to the cap
+  k.relativeVelocity = Vector3d(0.1, 0, 0);
+  for (int s = 0; s < 100; ++s) f = model.evaluate(k, xi, dt);
+  EXPECT_NEAR(f.forceOnFirst.x(), 5.0, 1e-12);
+  EXPECT_NEAR(xi[0], 5.0 / 2e3, 1e-15);
+  // reversing: the spring unloads at once (no longer at the cap)
+  k.relativeVelocity = Vector3d(-0.1, 0, 0);
+  f = model.evaluate(k, xi, dt);
+  EXPECT_NEAR(f.forceOnFirst.x(), 5.0 - 2e3 * 1e-4, 1e-12);
+}
+
+TEST(ContactModel, TangentialSpringIsRotatedIntoTheNewTangentPlaneKeepingItsLength) {
+  const ContactModel model(historySpec(), historyParameters(10.0, 1e3, 0.0));
+  Contact k;
+  k.penetration = 1e-3;
+  k.effectiveMass = 1.0;
+  double xi[3] = {2e-3, 0, 0};
+  // the contact plane tilted by 30 degrees about y: xi loses its normal part, keeps 2e-3
+  k.normal = Vector3d(std::sin(M_PI / 6), 0, std::cos(M_PI / 6));
+  const ContactForces f = model.evaluate(k, xi, 1e-3);
+  const Vector3d x(xi[0], xi[1], xi[2]);
+  EXPECT_NEAR(x.norm(), 2e-3, 1e-15);
+  EXPECT_NEAR(x.dot(k.normal), 0.0, 1e-18);
+  EXPECT_GT(x.x(), 0.0);
+  EXPECT_NEAR((f.forceOnFirst + 10.0 * k.normal - 1e3 * x).norm(), 0.0, 1e-12);
+}
+
+TEST(ContactModel, TangentialDashpotDampsTheSpringAndStaysWithinTheCap) {
+  // one contact point, m_eff = 1 kg: xi'' = -k_t xi - 2 D_t v; damping ratio D_t / sqrt(k_t)
+  const double kt = 1e4, zeta = 0.2;
+  const ContactModel model(historySpec(), historyParameters(100.0, kt, zeta * std::sqrt(kt)));
+  Contact k;
+  k.normal = Vector3d::UnitZ();
+  k.penetration = 1.0;
+  k.effectiveMass = 1.0;
+  double xi[3] = {0, 0, 0};
+  double x = 0.0, v = 1.0, peak1 = 0.0, peak2 = 0.0;
+  const double dt = 1e-5;
+  int crossings = 0;
+  for (int s = 0; s < 200000 && crossings < 3; ++s) {
+    k.relativeVelocity = Vector3d(-v, 0, 0);  // j relative to i: i moves at +v
+    const double force = model.evaluate(k, xi, dt).forceOnFirst.x();
+    const double vOld = v;
+    v += force * dt;
+    x += v * dt;
+    if (vOld > 0 && v <= 0) (crossings == 0 ? peak1 : peak2) = x, ++crossings;
+    if (vOld < 0 && v >= 0) ++crossings;
+  }
+  // amplitude ratio over one period: exp(-2 pi zeta / sqrt(1 - zeta^2))
+  EXPECT_NEAR(peak2 / peak1, std::exp(-2 * M_PI * zeta / std::sqrt(1 - zeta * zeta)), 2e-3);
+}
+
+TEST(ContactModel, CohesionPullsWhileTheHalosOverlap) {
+  ContactModelSpec spec;
+  spec.cohesion = "sjkr";
+  ContactParameters p = eq1(1e4, 0.0);
+  p.set("cohesionEnergyDensity", 1e5);
+  p.set("characteristicRadius", 2e-3);
+  p.set("haloDepth", 1e-4);
+  const ContactModel model(spec, p);
+  const double fc = 2 * M_PI * 2e-3 * 1e-4 * 1e5;  // 0.1257 N
+  Contact k;
+  k.normal = Vector3d::UnitZ();
+  k.penetration = 1e-6;  // spring 0.01 N
+  EXPECT_NEAR(model.evaluate(k, nullptr, 1e-5).forceOnFirst.z(), -0.01 + fc, 1e-14);
+  k.penetration = 0.0;
+  EXPECT_EQ(model.evaluate(k, nullptr, 1e-5).forceOnFirst.z(), 0.0);
+  EXPECT_EQ(model.historySize(), 0);
+  ContactParameters missing = eq1(1e4, 0.0);
+  missing.set("cohesionEnergyDensity", 1e5);
+  missing.set("haloDepth", 1e-4);
+  EXPECT_THROW(ContactModel(spec, missing), std::invalid_argument);
+}
+
+struct Anchor {
+  Vector3d point, normal;
+};
+
+TEST(ContactHistory, MatchesByPositionInTheFirstBodysFrameWhateverTheOrder) {
+  ContactHistoryMatcher matcher(3, {0.01, 0.9});
+  contact::Pose pose;
+  pose.position = Vector3d(1, 2, 3);
+  pose.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Vector3d(1, 1, 0).normalized()));
+  std::vector<Anchor> first = {{pose.position + pose.orientation * Vector3d(0.1, 0, 0), Vector3d::UnitZ()},
+                               {pose.position + pose.orientation * Vector3d(-0.1, 0, 0), Vector3d::UnitZ()},
+                               {pose.position + pose.orientation * Vector3d(0, 0.1, 0), Vector3d::UnitX()}};
+  std::vector<double> records, next;
+  ContactHistoryMatchStatistics stats;
+  matcher.match(records.data(), 0, first, pose, next, &stats);
+  ASSERT_EQ(next.size(), 3u * 9u);
+  EXPECT_EQ(stats.started, 3u);
+  for (int k = 0; k < 3; ++k) next[std::size_t(k) * 9 + 6] = 10.0 * (k + 1);  // histories 10, 20, 30
+  records = next;
+  // the pair moved rigidly, the points come in another order, one moved a little, one jumped
+  // across its face (same normal: the same patch)
+  contact::Pose moved;
+  moved.position = Vector3d(-1, 0, 0.5);
+  moved.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(1.1, Vector3d(0, 1, 1).normalized()));
+  const auto at = [&](const Vector3d& body) { return Vector3d(moved.position + moved.orientation * body); };
+  std::vector<Anchor> second = {{at(Vector3d(0.3, 0.3, 0)), moved.orientation * Vector3d::UnitZ()},
+                                {at(Vector3d(0.002, 0.1, 0)), moved.orientation * Vector3d::UnitX()},
+                                {at(Vector3d(0.1, 0, 0)), moved.orientation * Vector3d::UnitZ()}};
+  stats = {};
+  matcher.match(records.data(), 3, second, moved, next, &stats);
+  EXPECT_EQ(stats.kept, 3u);
+  EXPECT_EQ(stats.moved, 1u);
+  EXPECT_EQ(stats.started, 0u);
+  EXPECT_EQ(stats.dropped, 0u);
+  EXPECT_EQ(next[0 * 9 + 6], 20.0);  // jumped: continues the second
+  EXPECT_EQ(next[1 * 9 + 6], 30.0);  // continues the third
+  EXPECT_EQ(next[2 * 9 + 6], 10.0);  // continues the first
+  EXPECT_NEAR(next[1 * 9 + 0], 0.002, 1e-15);  // anchor follows the point
+  EXPECT_NEAR(next[0 * 9 + 1], 0.3, 1e-15);
+}
+
+TEST(ContactHistory, OpenedContactsEndMergedOnesAddUpNewOnesStartAtZero) {
+  ContactHistoryMatcher matcher(1, {0.01, 0.9});
+  contact::Pose pose;
+  // two records with normal +z (h 5 and 7), one with normal +x (h 3)
+  const std::vector<double> records = {0, 0, 0, 0, 0, 1, 5.0,   0.1, 0, 0, 0, 0, 1, 7.0,
+                                       0, 0.2, 0, 1, 0, 0, 3.0};
+  std::vector<double> next;
+  ContactHistoryMatchStatistics stats;
+  // one +z point near the first: continues it and absorbs the second (merged); the +x contact
+  // opened; a new point with normal +y starts at zero
+  std::vector<Anchor> now = {{Vector3d(0.001, 0, 0), Vector3d::UnitZ()}, {Vector3d(0, 0, 0.3), Vector3d::UnitY()}};
+  matcher.match(records.data(), 3, now, pose, next, &stats);
+  EXPECT_EQ(next[6], 12.0);
+  EXPECT_EQ(next[7 + 6], 0.0);
+  EXPECT_EQ(stats.kept, 1u);
+  EXPECT_EQ(stats.merged, 1u);
+  EXPECT_EQ(stats.dropped, 1u);
+  EXPECT_EQ(stats.started, 1u);
+  // a normal turned beyond the merge cosine (0.71 < 0.9) is another contact
+  std::vector<Anchor> turned = {{Vector3d::Zero(), Vector3d(1, 0, 1).normalized()}};
+  matcher.match(records.data(), 1, turned, pose, next);
+  EXPECT_EQ(next[6], 0.0);
+  // two points compete for one record: the closer one continues it, the other starts at zero
+  std::vector<Anchor> two = {{Vector3d(0.005, 0, 0), Vector3d::UnitZ()}, {Vector3d(0.001, 0, 0), Vector3d::UnitZ()}};
+  matcher.match(records.data(), 1, two, pose, next);
+  EXPECT_EQ(next[6], 0.0);
+  EXPECT_EQ(next[7 + 6], 5.0);
+}
+
+}  // namespace
+
+namespace {
+TEST(ContactModel, ZeroTimeStepRepeatsTheForceAndKeepsTheHistory) {
+  const ContactModel model(historySpec(), historyParameters(0.5, 2e3, 30.0));
+  Contact k;
+  k.normal = Vector3d::UnitZ();
+  k.penetration = 1e-3;
+  k.effectiveMass = 1.0;
+  k.relativeVelocity = Vector3d(0.3, 0.1, 0);
+  double xi[3] = {0, 0, 0};
+  for (int s = 0; s < 30; ++s) model.evaluate(k, xi, 1e-3);  // slides: xi at the cap
+  const Vector3d last = model.evaluate(k, xi, 1e-3).forceOnFirst;
+  const double after[3] = {xi[0], xi[1], xi[2]};
+  const Vector3d again = model.evaluate(k, xi, 0.0).forceOnFirst;
+  EXPECT_EQ(std::memcmp(after, xi, sizeof(xi)), 0);                  // unchanged
+  EXPECT_EQ(std::memcmp(last.data(), again.data(), sizeof(double) * 3), 0);  // same bits
+  k.relativeVelocity = Vector3d(-0.3, 0.1, 0);  // (a real step does move it)
+  model.evaluate(k, xi, 1e-3);
+  EXPECT_NE(std::memcmp(after, xi, sizeof(xi)), 0);
+}
+}  // namespace
+
+namespace {
+TEST(MaterialMapping, HertzEffectiveQuantitiesAndTheHaloStiffness) {
+  const double inf = std::numeric_limits<double>::infinity();
+  // one material, nu = 0: S = E r between grains (Yade's FrictPhys for equal spheres), 2 E r on a wall
+  EXPECT_DOUBLE_EQ(haloStiffness(effectiveModulus(1e7, 0.0, 1e7, 0.0), effectiveRadius(0.01, 0.01)), 1e7 * 0.01);
+  EXPECT_DOUBLE_EQ(haloStiffness(effectiveModulus(1e7, 0.0, 1e7, 0.0), effectiveRadius(0.01, inf)), 2 * 1e7 * 0.01);
+  // E* with nu: E / (2 (1 - nu^2)) for one material
+  EXPECT_NEAR(effectiveModulus(2e9, 0.3, 2e9, 0.3), 2e9 / (2 * (1 - 0.09)), 1e-3);
+  // a soft wall lowers the stiffness: E* of 1e7 and 1e6
+  EXPECT_NEAR(effectiveModulus(1e7, 0.0, 1e6, 0.0), 1.0 / (1e-7 + 1e-6), 1e-6);
+  // Mindlin: 2 (1 - nu) / (2 - nu) for one material
+  EXPECT_NEAR(mindlinStiffnessRatio(5e6, 0.3, 5e6, 0.3), 2 * 0.7 / 1.7, 1e-14);
+  EXPECT_NEAR(mindlinStiffnessRatio(5e6, 0.0, 5e6, 0.0), 1.0, 1e-14);
+  EXPECT_THROW(effectiveModulus(-1.0, 0.3, 1e7, 0.3), std::invalid_argument);
+  EXPECT_THROW(effectiveModulus(1e7, 0.5, 1e7, 0.3), std::invalid_argument);
+  EXPECT_THROW(effectiveModulus(std::nan(""), 0.3, 1e7, 0.3), std::invalid_argument);
+}
+
+TEST(MaterialMapping, ContactTimeMatchesADirectIntegration) {
+  for (double zeta : {0.0, 0.3, 0.9, 1.0, 1.4}) {
+    const double spring = 4e5, mass = 0.02, damping = zeta * std::sqrt(spring / 2);
+    const ContactTiming t = contactTiming(spring, damping, mass, 0.0, 0.0);
+    // m x'' = -(S/2) x - 2 D sqrt(m) x' (approach), -(S/2) x (release), from x = 0, x' = 1
+    const double dt = 1e-5 / t.normalFrequency;
+    double x = 0.0, v = 1.0, time = 0.0;
+    do {
+      const double a = (-(spring / 2) * x - (v > 0 ? 2 * damping * std::sqrt(mass) * v : 0.0)) / mass;
+      v += a * dt;
+      x += v * dt;
+      time += dt;
+    } while (x > 0.0);
+    EXPECT_NEAR(time / t.contactTime, 1.0, 1e-4) << zeta;
+    EXPECT_NEAR(t.stableStep, 2.0 / t.normalFrequency, 1e-18);
+  }
+  const ContactTiming withSpring = contactTiming(4e5, 0.0, 0.02, 3e5, 0.005);
+  EXPECT_NEAR(withSpring.stableStep, 2.0 / std::sqrt(3e5 / 0.005), 1e-15);
+}
 }  // namespace

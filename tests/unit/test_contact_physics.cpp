@@ -24,6 +24,7 @@
 #include "geometry/MeshValidation.h"
 #include "geometry/PrimitiveMeshes.h"
 #include "geometry/RigidShape.h"
+#include "rigid_contact_driver.h"
 
 using namespace spacetree;
 using namespace spacetree::dynamics;
@@ -41,57 +42,9 @@ using Eigen::Vector3d;
 
 namespace {
 
-struct Particle {
-  const RigidShape* shape;
-  RigidBody body;
-};
-
-struct StepReport {
-  std::size_t contacts = 0;
-  double largestPenetration = 0.0;  // eps - d/2 over all contacts (> eps: surfaces overlap)
-};
-
-class Driver {
- public:
-  // The model is evaluated for every contact point (no history: the models here keep none).
-  Driver(MeshContactOptions options, const ContactModel& model, Vector3d gravity)
-      : finder_(std::move(options)), model_(model), gravity_(gravity) {}
-
-  StepReport step(std::vector<Particle>& particles, double dt) {
-    StepReport report;
-    std::vector<BodyLoad> loads(particles.size());
-    std::vector<ContactPoint> contacts;
-    for (std::size_t i = 0; i < particles.size(); ++i)
-      for (std::size_t j = i + 1; j < particles.size(); ++j) {
-        const RigidBody& a = particles[i].body;
-        const RigidBody& b = particles[j].body;
-        if (a.isFixed() && b.isFixed()) continue;
-        contacts.clear();
-        finder_.find(*particles[i].shape, Pose{a.position, a.orientation}, *particles[j].shape,
-                     Pose{b.position, b.orientation}, contacts);
-        for (const ContactPoint& c : contacts) {
-          const contact_model::Contact k =
-              contact_model::makeContact(a, b, c.point, c.normal, c.penetration);
-          const Vector3d force = model_.evaluate(k, nullptr, dt).forceOnFirst;
-          applyContactForce(a, b, c.point, force, loads[i], loads[j]);
-          report.largestPenetration = std::max(report.largestPenetration, c.penetration);
-        }
-        report.contacts += contacts.size();
-      }
-    for (std::size_t i = 0; i < particles.size(); ++i) {
-      RigidBody& body = particles[i].body;
-      if (body.isFixed()) continue;
-      body.kick(loads[i].force + body.mass() * gravity_, loads[i].torque, dt);
-      body.drift(dt);
-    }
-    return report;
-  }
-
- private:
-  MeshContactFinder finder_;
-  const ContactModel& model_;
-  Vector3d gravity_;
-};
+using Driver = spacetree::testing::RigidContactDriver;
+using spacetree::testing::Particle;
+using spacetree::testing::StepReport;
 
 // Paper eq. (1): halo spring S and approach damping D; with friction MU GAMMA the viscous
 // tangential model (only scenes that ask for friction pay for it).

@@ -92,7 +92,7 @@ std::vector<TriangleContact> serialReference(const DentedPack& pack) {
         contacts.push_back(c);
       }
     }
-  std::sort(contacts.begin(), contacts.end(), canonicalContactLess);
+  std::stable_sort(contacts.begin(), contacts.end(), canonicalContactLess);
   return contacts;
 }
 

@@ -306,3 +306,47 @@ TEST(ParallelPairChecks, BadOptionsAreRejected) {
   EXPECT_THROW(PosedMeshPairCheck(none, zero), std::invalid_argument);
   EXPECT_GE(TaskParallelPairChecks().threads(), 1);  // TBB default
 }
+
+namespace {
+// Candidate k's result: a deterministic function of k, written to its own slot; counts calls.
+class SquareCandidates : public spacetree::parallel::CandidateCheck {
+ public:
+  explicit SquareCandidates(std::size_t n) : result(n, 0.0), calls(n) {}
+  std::size_t work(std::size_t k) const override { return k % 7 == 0 ? 0 : 100 * (k % 5 + 1); }
+  void check(std::size_t k) const override {
+    double x = 0.0;
+    for (std::size_t i = 0; i <= k % 97; ++i) x += std::sqrt(double(k + i));
+    result[k] = x;
+    calls[k].fetch_add(1);
+  }
+  mutable std::vector<double> result;
+  mutable std::vector<std::atomic<int>> calls;
+};
+}  // namespace
+
+TEST(ParallelPairChecks, CandidateListEveryCandidateOnceSameResultsForAnyThreadsAndGrain) {
+  static tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 4);
+  const std::size_t n = 5000;
+  SquareCandidates reference(n);
+  for (std::size_t k = 0; k < n; ++k) reference.check(k);
+  std::size_t work = 0;
+  for (std::size_t k = 0; k < n; ++k) work += reference.work(k);
+  for (int threads : {1, 2, 4})
+    for (std::size_t grain : {std::size_t(1), std::size_t(1000), std::size_t(1) << 40}) {
+      SquareCandidates check(n);
+      TaskParallelPairChecks engine(TaskParallelOptions{threads, grain});
+      engine.runCandidates(n, check);
+      for (std::size_t k = 0; k < n; ++k) {
+        ASSERT_EQ(check.calls[k].load(), 1) << k;
+        ASSERT_EQ(std::memcmp(&check.result[k], &reference.result[k], sizeof(double)), 0) << k;
+      }
+      EXPECT_EQ(engine.statistics().pairs, n);
+      EXPECT_EQ(engine.statistics().trianglePairs, work);
+      if (grain == 1) EXPECT_EQ(engine.statistics().tasks, n);          // one task per candidate
+      if (grain == (std::size_t(1) << 40)) EXPECT_EQ(engine.statistics().tasks, 1u);
+    }
+  TaskParallelPairChecks engine(TaskParallelOptions{2, 10});
+  SquareCandidates none(0);
+  engine.runCandidates(0, none);
+  EXPECT_EQ(engine.statistics().tasks, 0u);
+}

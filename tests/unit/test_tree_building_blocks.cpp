@@ -1,4 +1,4 @@
-// The tree's building blocks: vertex look-up (dense and hashed) and the radix sort.
+// The tree's building blocks: root cube, radix sort, vertex key set.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,54 +7,11 @@
 #include <tuple>
 #include <vector>
 
+#include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
 #include "tree/VertexKeySet.h"
-#include "tree/VertexLookup.h"
 
 using namespace spacetree;
-
-namespace {
-struct TestVertex {
-  VertexIndex index;
-};
-
-std::vector<TestVertex> randomVertices(int n, int range, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> u(0, range);
-  std::set<std::tuple<int, int, int>> unique;
-  while (int(unique.size()) < n) unique.insert({u(rng), u(rng), u(rng)});
-  std::vector<TestVertex> v;
-  for (const auto& [i, j, k] : unique) v.push_back(TestVertex{VertexIndex{i, j, k}});
-  return v;
-}
-
-void expectLookupFindsExactlyTheVertices(const std::vector<TestVertex>& vertices, int range,
-                                         bool expectDense) {
-  VertexLookup lookup;
-  lookup.build(vertices);
-  EXPECT_EQ(lookup.dense(), expectDense);
-  std::set<std::tuple<int, int, int>> present;
-  for (std::size_t s = 0; s < vertices.size(); ++s) {
-    const VertexIndex& v = vertices[s].index;
-    present.insert({v.i, v.j, v.k});
-    EXPECT_EQ(lookup.find(v.i, v.j, v.k), std::int32_t(s));
-  }
-  for (int i = -2; i <= range + 2; i += 3)
-    for (int j = -2; j <= range + 2; j += 2)
-      for (int k = -2; k <= range + 2; ++k)
-        if (!present.count({i, j, k})) {
-          EXPECT_EQ(lookup.find(i, j, k), VertexLookup::kAbsent);
-        }
-}
-}  // namespace
-
-TEST(VertexLookup, DenseLevelUsesAnArrayAndFindsEveryVertex) {
-  expectLookupFindsExactlyTheVertices(randomVertices(3000, 20, 1), 20, true);
-}
-
-TEST(VertexLookup, SparseLevelUsesAHashAndFindsEveryVertex) {
-  expectLookupFindsExactlyTheVertices(randomVertices(300, 200, 2), 200, false);
-}
 
 TEST(RadixSort, SortsLikeAStableSort) {
   std::mt19937_64 rng(3);
@@ -98,6 +55,24 @@ TEST(VertexKeySet, InsertsAndErasesLikeAStdSet) {
     for (int k = 0; k < 50; ++k) {
       const std::uint64_t key = randomKey();
       ASSERT_EQ(set.contains(key), reference.count(key) == 1) << "round " << round;
+    }
+  }
+}
+
+// The finest level of the chosen cube must hold the smallest particle: rootSize / 3^depth is
+// rounded, and a mesh one ulp below the need would host the smallest particles a level higher,
+// 27 times as many per vertex.
+TEST(GridGeometry, FinestMeshOfTheRootCubeFitsTheSmallestParticle) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> need(1e-5, 1e-1), ratio(1.0, 1e4);
+  for (int t = 0; t < 20000; ++t) {
+    const double finest = need(rng), root = finest * ratio(rng);
+    spacetree::GridGeometry g;
+    spacetree::chooseRootCube(finest, root, spacetree::kMaxSpacetreeLevel, g);
+    ASSERT_GE(spacetree::meshSizeOfLevel(g.rootSize, g.depth), finest) << "finest need " << finest;
+    ASSERT_GE(g.rootSize, root);
+    if (g.depth > 0) {
+      ASSERT_LT(g.rootSize / 3.0, root * (1.0 + 1e-12)) << "one level fewer would do";
     }
   }
 }

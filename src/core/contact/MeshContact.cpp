@@ -123,6 +123,20 @@ Vector3d touchingNormal(const geometry::TriangleDistanceResult& r, const Triangl
   return firstNormal - secondNormal;
 }
 
+// Height of vertex v above `face` (unit outward normal n) if v lies over the closed face within
+// [0, contactDistance) of its plane, else -1. The tolerance admits a projection on an edge.
+double heightOverFace(const Vector3d& v, const Triangle& face, const Vector3d& n,
+                      double contactDistance, double tolerance) {
+  const double h = n.dot(v - face[0]);
+  if (!(h >= 0.0 && h < contactDistance)) return -1.0;
+  const Vector3d q = v - h * n;
+  for (int k = 0; k < 3; ++k) {
+    const Vector3d edge = face[(k + 1) % 3] - face[k];
+    if (edge.cross(q - face[k]).dot(n) < -tolerance * edge.norm()) return -1.0;
+  }
+  return h;
+}
+
 // Relative slack of the culls of step 3 beyond the bounding spheres: a cull drops a triangle
 // or pair only when it is farther than its reach by this fraction of the scales involved, far
 // above the rounding of the frame change and of the distances (~1e-16 of them).
@@ -402,6 +416,14 @@ void MeshContactFinder::computeDistances(double contactDistance, MeshContactStat
                                         results_.data(), &hybridCounts);
       counts.fallbacks = hybridCounts.fallbacks();
       counts.continued = hybridCounts.continued;
+      // Its contact points: the exact method's closest points for the pairs in contact. The
+      // hybrid certifies distances and contact decisions, not where its Newton iterate stops
+      // among equally close points: for two (nearly) parallel faces that set is a whole region,
+      // and a point wandering over it moves the lever arm of the force (a cube resting on a
+      // face rocked without end). The exact method picks the closest features consistently.
+      for (std::size_t p = 0; p < pairs; ++p)
+        if (results_[p].distance < contactDistance)
+          results_[p] = geometry::triangleDistance(pairFirst_[p], pairSecond_[p]);
       break;
     }
   }
@@ -416,6 +438,7 @@ void MeshContactFinder::collectRawContacts(const geometry::RigidShape& first,
   for (std::size_t p = 0; p < pairs; ++p) {
     const geometry::TriangleDistanceResult& r = results_[p];
     if (!(r.distance < frame.contactDistance)) continue;
+    addVertexContacts(p);
     ContactPoint c;
     c.point = 0.5 * (r.pointOnFirst + r.pointOnSecond);
     c.distance = r.distance;
@@ -451,7 +474,7 @@ void MeshContactFinder::mergeDuplicates(const geometry::RigidShape& first,
                                         const geometry::RigidShape& second,
                                         std::vector<ContactPoint>& contacts, std::size_t begin) {
   const double eps = options_.epsilon;
-  const double mergeDistance = std::min(first.minimumEdgeLength, second.minimumEdgeLength);
+  const double mergeDistance = 0.5 * std::min(first.minimumEdgeLength, second.minimumEdgeLength);
   std::vector<Vector3d>& normalSums = normalSums_;  // weighted sums of merged unit normals
   std::vector<double>& weights = weights_;          // sums of merged penetrations
   normalSums.clear();
@@ -483,6 +506,47 @@ void MeshContactFinder::mergeDuplicates(const geometry::RigidShape& first,
       contacts.push_back(c);
       normalSums.push_back(c.penetration * c.normal);
       weights.push_back(c.penetration);
+    }
+  }
+}
+
+// Step (4b): the vertices of either triangle of a pair in contact that lie over the other's face
+// within the contact distance, each a contact (vertex on face) of its own. The kernel gives one
+// closest pair per triangle pair; for two faces lying on each other (a grain resting on a face,
+// a box on a floor) that is one corner of the region where they are equally close, and under
+// the slightest tilt only the lowest one, so a face on a face was held at one or two points and
+// rocked. With its corners the face is held where it rests. For a vertex touching a face the
+// added contact is the kernel's own (merged by the de-duplication).
+void MeshContactFinder::addVertexContacts(std::size_t p) {
+  const double eps = options_.epsilon, contactDistance = 2.0 * eps;
+  const Triangle& a = pairFirst_[p];
+  const Triangle& b = pairSecond_[p];
+  const int firstTriangle = pairIndex_[p][0];
+  const int secondTriangle = nearSecond_[std::size_t(pairIndex_[p][1])];
+  const double tolerance = kDirectionTolerance * std::max(a.longestEdge(), b.longestEdge());
+  const Vector3d na = outwardUnitNormal(a), nb = outwardUnitNormal(b);
+  for (int side = 0; side < 2; ++side) {
+    const Triangle& vertices = side == 0 ? a : b;
+    const Triangle& face = side == 0 ? b : a;
+    const Vector3d& faceNormal = side == 0 ? nb : na;
+    if (!(faceNormal.squaredNorm() > 0.0)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Vector3d& v = vertices[k];
+      const double h = heightOverFace(v, face, faceNormal, contactDistance, tolerance);
+      if (h < 0.0) continue;
+      // first -> second: down onto the second's face, or up from the first's face. No
+      // local-minimum filter (5b): under a tilt of 1e-7 the corners of a face lying on another
+      // are not local minima of the distance, yet lie in the halo like the lowest one; and the
+      // force along the face normal pushes nothing sideways.
+      const Vector3d normal = side == 0 ? Vector3d(-faceNormal) : faceNormal;
+      ContactPoint c;
+      c.point = v - 0.5 * h * faceNormal;  // halfway between the vertex and the face
+      c.normal = normal;
+      c.distance = h;
+      c.penetration = eps - 0.5 * h;
+      c.firstTriangle = firstTriangle;
+      c.secondTriangle = secondTriangle;
+      raw_.push_back(c);
     }
   }
 }

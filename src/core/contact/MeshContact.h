@@ -40,7 +40,14 @@
 // surviving triangle pairs go to the chosen distance method in one batch (Exact:
 // triangleDistance; Penalty: the batched penalty-Newton kernel, uncertified; Hybrid: penalty
 // with certified fallback, contact decisions identical to Exact's; by default two-stage:
-// uncertified pairs continue continuationIterations more Newton steps before the fallback); (5) contacts (d < 2 eps);
+// uncertified pairs continue continuationIterations more Newton steps before the fallback); the
+// hybrid's pairs in contact get the exact method's closest points (it certifies distances, not
+// where among equally close points its iterate stops: over two parallel faces that point
+// wandered and moved the lever arm of the force); (4b) vertex contacts: every vertex of either
+// triangle of a pair in contact that lies over the other triangle's face within 2 eps is a
+// contact of its own (a face lying on a face is held at its corners, not at the one closest
+// point the kernel gives per triangle pair, which under the slightest tilt is the lowest corner
+// only); (5) contacts (d < 2 eps);
 // (5b) local-minimum filter: a triangle-pair contact whose closest point lies on an edge or a
 // vertex of its triangle is dropped when a neighbouring triangle across that edge (around that
 // vertex) descends towards the other body (u . (w - p) > kFeatureTolerance |w - p|, u the unit
@@ -49,9 +56,11 @@
 // (so nothing is lost). It removes, e.g., the slanted edge-edge contacts of a flat face's
 // interior diagonal, which would push a particle resting on a floor sideways;
 // (6) de-duplication (paper §3, step 2): a contact is averaged into an earlier one when its
-// point is closer than the smaller of the two particles' minimum edge lengths to that
+// point is closer than half the smaller of the two particles' minimum edge lengths to that
 // contact's mean point and the normals' cosine is at least mergeNormalCosine. Typical
-// duplicates: a vertex touching a face is found once per triangle around the vertex. The
+// duplicates: a vertex touching a face is found once per triangle around the vertex. (The
+// paper's full edge length merged the corners of a face - an edge apart, within rounding -
+// into one point at a corner: a cube on a floor was held at a corner and rocked.) The
 // average (point, unit normal, penetration) is weighted by the penetrations, not plain as in
 // the paper: a triangle pair that just enters the 2 eps band has weight 0, so the merged force
 // changes continuously (with plain averaging, a slanted contact entering the band - e.g. one
@@ -207,10 +216,13 @@ class MeshContactFinder {
                          const PairFrame& frame, MeshContactStatistics& counts);
   // (4): the chosen distance method on all pairs at once -> results_.
   void computeDistances(double contactDistance, MeshContactStatistics& counts);
-  // (5), (5b): the pairs closer than 2 eps that are local distance minima, as contacts in the
-  // first body's frame -> raw_.
+  // (4b), (5), (5b): the pairs closer than 2 eps that are local distance minima, and the
+  // vertices over the other triangle's face within 2 eps, as contacts in the first body's
+  // frame -> raw_.
   void collectRawContacts(const geometry::RigidShape& first, const geometry::RigidShape& second,
                           const PairFrame& frame, MeshContactStatistics& counts);
+  // (4b) for pair p: its vertex contacts -> raw_.
+  void addVertexContacts(std::size_t pair);
   // (6): raw_ merged into the contacts appended to `contacts` from index begin on.
   void mergeDuplicates(const geometry::RigidShape& first, const geometry::RigidShape& second,
                        std::vector<ContactPoint>& contacts, std::size_t begin);

@@ -53,13 +53,15 @@ ContactModel::ContactModel(const ContactModelSpec& spec, const ContactParameters
 }
 
 ContactModelTable::ContactModelTable(int types, const ContactModelSpec& spec,
-                                     const std::function<ContactParameters(int, int)>& parametersOf)
+                                     const std::function<ContactParameters(int, int)>& parametersOf,
+                                     const std::function<bool(int, int)>& active)
     : types_(types), spec_(spec) {
   if (types < 1) throw std::invalid_argument("ContactModelTable: needs at least one type");
   spec.validate();
   models_.assign(std::size_t(types) * std::size_t(types), nullptr);
   for (int i = 1; i <= types; ++i)
     for (int j = i; j <= types; ++j) {
+      if (active && !active(i, j)) continue;
       std::shared_ptr<const ContactModel> model;
       try {
         model = std::make_shared<const ContactModel>(spec_, parametersOf(i, j));
@@ -67,7 +69,7 @@ ContactModelTable::ContactModelTable(int types, const ContactModelSpec& spec,
         throw std::invalid_argument("type pair " + std::to_string(i) + " " + std::to_string(j) +
                                     ": " + e.what());
       }
-      historySize_ = model->historySize();
+      historySize_ = model->historySize();  // the same for every pair (one spec)
       models_[std::size_t(i - 1) * std::size_t(types) + std::size_t(j - 1)] = model;
       models_[std::size_t(j - 1) * std::size_t(types) + std::size_t(i - 1)] = model;
     }

@@ -65,7 +65,8 @@ class ContactModel {
   const ContactModelSpec& spec() const { return spec_; }
   int historySize() const { return historySize_; }
 
-  // `history`: historySize() doubles (may be nullptr when 0); dt: time step [s].
+  // `history`: historySize() doubles (may be nullptr when 0); dt: time step [s] over which the
+  // history advances; dt = 0 leaves it as it is (a repeated force computation, e.g. a run's setup).
   ContactForces evaluate(const Contact& c, double* history, double dt) const {
     ContactForces out;
     double f = normal_->force(c);
@@ -101,15 +102,20 @@ class ContactModelTable {
  public:
   ContactModelTable() = default;
   // parametersOf(i, j) for 1 <= i <= j <= n gives the coefficients of that pair; throws as
-  // ContactModel, the message prefixed with "type pair i j: ".
+  // ContactModel, the message prefixed with "type pair i j: ". Pairs for which active(i, j) is
+  // false (types that never touch) get no model (has() false) and need no coefficients.
   ContactModelTable(int types, const ContactModelSpec& spec,
-                    const std::function<ContactParameters(int, int)>& parametersOf);
+                    const std::function<ContactParameters(int, int)>& parametersOf,
+                    const std::function<bool(int, int)>& active = nullptr);
 
   int types() const { return types_; }
   bool empty() const { return types_ == 0; }
   const ContactModelSpec& spec() const { return spec_; }
   int historySize() const { return historySize_; }
-  // Types 1..types() in either order.
+  bool has(int i, int j) const {
+    return models_[std::size_t(i - 1) * std::size_t(types_) + std::size_t(j - 1)] != nullptr;
+  }
+  // Types 1..types() in either order; the pair must have a model.
   const ContactModel& at(int i, int j) const {
     return *models_[std::size_t(i - 1) * std::size_t(types_) + std::size_t(j - 1)];
   }

@@ -1,7 +1,9 @@
 // The slots of a contact model (the form of modern LAMMPS GRANULAR: one class per physical
 // effect, composed at input time). Each sub-model takes its coefficients for one type pair from
 // ContactParameters when it is built and declares how many doubles of per-contact history it
-// keeps (historySize); ContactModel gives it the offset of its part of a contact's history slot.
+// keeps (a class with history: static constexpr int kHistorySize, returned by historySize(), so
+// that the registry knows it before any coefficient); ContactModel gives it the offset of its
+// part of a contact's history slot.
 // A sub-model holds no mutable state: evaluate-calls on different contacts may run concurrently.
 //
 // Sign conventions: Contact.h. Normal and damping forces are magnitudes along the repulsive
@@ -56,7 +58,8 @@ class TangentialSubModel : public SubModel {
  public:
   Slot slot() const override { return Slot::Tangential; }
   // Force on the first body for a (repulsive) normal force normalForce >= 0; `history` is this
-  // sub-model's part of the contact's history slot (updated), dt the time step [s].
+  // sub-model's part of the contact's history slot, updated over the time step dt [s]; dt = 0:
+  // the force of the stored history, which is left as it is.
   virtual Eigen::Vector3d forceOnFirst(const Contact& c, double normalForce, double* history,
                                        double dt) const = 0;
   // Stiffness of the tangential spring [N/m], 0 without one (time-step estimates).
@@ -76,6 +79,8 @@ class CohesionSubModel : public SubModel {
   Slot slot() const override { return Slot::Cohesion; }
   // Attractive normal force (magnitude) [N].
   virtual double force(const Contact& c) const = 0;
+  // The force that pulls one contact point apart [N] (warnings, time-step estimates).
+  virtual double pullOffForce() const = 0;
 };
 
 }  // namespace spacetree::contact_model

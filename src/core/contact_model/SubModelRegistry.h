@@ -17,6 +17,7 @@ struct SubModelEntry {
   Slot slot;
   const char* keyword;
   std::unique_ptr<SubModel> (*create)(const ContactParameters&);
+  int historySize;      // the class's kHistorySize (0 if it declares none)
   const char* summary;  // one line for error messages and docs
 };
 
@@ -28,6 +29,10 @@ const SubModelEntry* findSubModel(Slot slot, const std::string& keyword);
 
 // The keywords a slot accepts, "none" first where allowed, comma separated.
 std::string subModelKeywords(Slot slot);
+
+// Doubles of per-contact history the named sub-models keep together (known before any
+// coefficient: a caller can set up the storage when the keywords are read).
+int historySizeOf(const struct ContactModelSpec& spec);
 
 // Builds the sub-model of `keyword` for one type pair (nullptr for none); throws as
 // findSubModel and as the sub-model's constructor (a missing or negative coefficient).

@@ -91,10 +91,41 @@ void TaskParallelPairChecks::finishSweep(std::vector<TriangleContact>& contacts)
   contacts.reserve(total);
   for (std::size_t t = 0; t < usedTasks_; ++t)
     contacts.insert(contacts.end(), tasks_[t]->contacts.begin(), tasks_[t]->contacts.end());
-  // Canonical order: a pair's contacts may come from several tasks, in any order.
-  std::sort(contacts.begin(), contacts.end(), canonicalContactLess);
+  // Canonical order: a pair's contacts may come from several tasks, in any order. Stable: the
+  // buffers are concatenated in spawn order (the producer's, deterministic), so ties keep the
+  // order of the one task that found them.
+  std::stable_sort(contacts.begin(), contacts.end(), canonicalContactLess);
   stats_.contacts = total;
   check_ = nullptr;
+}
+
+void TaskParallelPairChecks::runCandidates(std::size_t count, const CandidateCheck& check) {
+  const auto start = std::chrono::steady_clock::now();
+  stats_ = {};
+  stats_.pairs = count;
+  const std::size_t grain = options_.taskTrianglePairs;
+  const CandidateCheck* c = &check;
+  arena_.execute([&] {
+    std::size_t begin = 0, work = 0;
+    const auto spawnRange = [&](std::size_t end) {
+      ++stats_.tasks;
+      group_.run([c, begin, end] {
+        for (std::size_t k = begin; k < end; ++k) c->check(k);
+      });
+      begin = end;
+      work = 0;
+    };
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t w = check.work(k);
+      stats_.trianglePairs += w;
+      work += std::max<std::size_t>(w, 1);  // a candidate without triangles still costs a call
+      if (work >= grain) spawnRange(k + 1);
+    }
+    if (begin < count) spawnRange(count);
+    stats_.producerSeconds = secondsSince(start);
+    group_.wait();  // the one synchronisation; the caller's thread helps
+  });
+  stats_.sweepSeconds = secondsSince(start);
 }
 
 void TaskParallelPairChecks::abandonSweep() {

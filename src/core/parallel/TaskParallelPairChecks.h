@@ -25,6 +25,17 @@
 
 namespace spacetree::parallel {
 
+// A list of candidate pairs found by the caller (e.g. a neighbour list), checked as tasks: the
+// check of candidate k writes its result where the caller keeps it (one slot per candidate, so
+// no lock and no order to restore), work(k) sizes the tasks (nominal triangle pairs).
+class CandidateCheck {
+ public:
+  virtual ~CandidateCheck() = default;
+  virtual std::size_t work(std::size_t candidate) const = 0;
+  // Called concurrently for different candidates, once per candidate per sweep.
+  virtual void check(std::size_t candidate) const = 0;
+};
+
 struct TaskParallelOptions {
   int threads = 0;                       // threads of the arena; 0: TBB's default (all cores)
   std::size_t taskTrianglePairs = 4096;  // work of one task in triangle pairs (>= 1): a task
@@ -78,6 +89,12 @@ class TaskParallelPairChecks {
       tree.forEachPairWithin([&](int i, int j, double) { emit(i, j); }, relativeTolerance);
     }, check, contacts);
   }
+
+  // One sweep over the candidates 0..count-1 of a list: consecutive candidates are gathered into
+  // tasks of about taskTrianglePairs of work (a candidate is never split); returns when all are
+  // checked. statistics(): pairs = count, tasks, trianglePairs = sum of work (contacts: 0, the
+  // check keeps its own).
+  void runCandidates(std::size_t count, const CandidateCheck& check);
 
   // Counters of the last sweep.
   const TaskParallelStatistics& statistics() const { return stats_; }

@@ -23,7 +23,10 @@ struct TriangleContact {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
 };
 
-// The canonical order: by (first, second, firstTriangle, secondTriangle).
+// The canonical order: by (first, second, firstTriangle, secondTriangle); sorted stably, so
+// that contacts of one triangle pair (a check that reports several points per triangle pair,
+// e.g. MeshContact's vertex contacts, and checks whole pairs in one task) keep the order their
+// check gave them.
 inline bool canonicalContactLess(const TriangleContact& a, const TriangleContact& b) {
   return std::tie(a.first, a.second, a.firstTriangle, a.secondTriangle) <
          std::tie(b.first, b.second, b.firstTriangle, b.secondTriangle);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "tree/VertexKey.h"
@@ -19,6 +20,10 @@ struct GridGeometry {
   int depth = 0;                                // finest level; mesh size rootSize / 3^depth
 };
 
+// Mesh size of `level` in a root cube of edge rootSize: every level splits its cells in 3 per
+// axis. The tree and the persistent grid compute it alike, so they agree on cells and vertices.
+inline double meshSizeOfLevel(double rootSize, int level) { return rootSize / double(kPowersOfThree[level]); }
+
 // Root cube for particles needing mesh sizes from finestNeed up and a cube of at least
 // rootNeed: the finest mesh size the smallest particle needs, tripled until the cube covers
 // the particles and the biggest particle. Choosing it from the smallest particle makes the
@@ -33,13 +38,13 @@ inline void chooseRootCube(double finestNeed, double rootNeed, int maxLevel, Gri
     ++depth;
   }
   if (root < rootNeed) root = rootNeed;
+  // (finestNeed * 3^depth) / 3^depth rounds below finestNeed about once in four: the smallest
+  // particles would then not fit the finest level and crowd the next coarser one (27 times
+  // the particles per vertex). Round the cube up until the finest mesh holds them.
+  while (meshSizeOfLevel(root, depth) < finestNeed) root = std::nextafter(root, 2.0 * root);
   geometry.rootSize = root;
   geometry.depth = depth;
 }
-
-// Mesh size of `level` in a root cube of edge rootSize: every level splits its cells in 3 per
-// axis. The tree and the persistent grid compute it alike, so they agree on cells and vertices.
-inline double meshSizeOfLevel(double rootSize, int level) { return rootSize / double(kPowersOfThree[level]); }
 
 // Index along one axis of the vertex nearest to coordinate x on a level (origin: the cube's
 // lower corner there; inverseMeshSize = 1 / mesh size). Coordinates inside the cube are >= 0,

@@ -82,8 +82,10 @@ void Spacetree::clear(int n, int nActive) {
   // re-allocating it every step costs page faults comparable to the build itself.
   for (Level& level : levels_) {
     level.vertices.clear();
+    level.keys.clear();
+    level.rows.clear();
+    level.slices.clear();
     level.boxes.clear();
-    level.precomputedNeighbourhoods = false;
   }
   stats_ = SpacetreeStatistics{};
   particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
@@ -201,33 +203,30 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
         level.boxes.push_back(boxOf(v.begin, v.bigBegin));
       }
       level.vertices.push_back(v);
+      // Rows of equal (i, j), slices of equal i.
+      const std::int32_t slot = std::int32_t(level.vertices.size() - 1);
+      const bool newSlice = level.keys.empty() || v.index.i != level.vertices[slot - 1].index.i;
+      if (newSlice || v.index.j != level.vertices[slot - 1].index.j) {
+        if (newSlice) level.slices.push_back(Slice{v.index.i, std::int32_t(level.rows.size())});
+        level.rows.push_back(Row{v.index.j, slot, slot});
+      }
+      level.rows.back().end = slot + 1;
+      level.keys.push_back(key & ((std::uint64_t(1) << kLevelShift) - 1));
     }
-    level.lookup.build(level.vertices);
+    level.slices.push_back(Slice{0, std::int32_t(level.rows.size())});  // past the end
     stats_.levels[l].realParticles = std::uint64_t(e - s);
     stats_.levels[l].vertices = level.vertices.size();
     stats_.deepestPopulatedLevel = l;
     s = e;
   }
 
-  // Precompute the virtual-link candidates of a coarse level when it pays: building costs
-  // 2 x 27 look-ups per coarse vertex, gathering on demand up to 27 per finer vertex but
-  // consecutive finer vertices often share their ancestor (factor 4 measured best on dense
-  // bidisperse and dilute 1:100 continuous packs).
-  std::size_t finerVertices = 0;
-  for (int l = stats_.deepestPopulatedLevel; l >= 0; --l) {
-    Level& level = levels_[l];
-    level.precomputedNeighbourhoods = !level.vertices.empty() && finerVertices > 4 * level.vertices.size();
-    if (level.precomputedNeighbourhoods)
-      level.neighbourhoods.build(level.vertices, [](const Vertex& u) { return u.sortedByX(); });
-    finerVertices += level.vertices.size();
-  }
-
   std::uint64_t bytes = (sx_.capacity() + sy_.capacity() + sz_.capacity() + sr_.capacity()) * sizeof(double) +
                         (sortedId_.capacity() + particleLevel_.capacity()) * sizeof(std::int32_t) +
                         (sortKeys_.capacity() + sortScratch_.capacity()) * sizeof(KeyedIndex);
   for (const Level& level : levels_)
-    bytes += level.vertices.capacity() * sizeof(Vertex) + level.lookup.memoryBytes() +
-             level.neighbourhoods.memoryBytes();
+    bytes += level.vertices.capacity() * sizeof(Vertex) + level.keys.capacity() * sizeof(std::uint64_t) +
+             level.rows.capacity() * sizeof(Row) + level.slices.capacity() * sizeof(Slice) +
+             level.boxes.capacity() * sizeof(Box);
   stats_.memoryBytes = bytes;
 }
 
@@ -312,24 +311,6 @@ std::int32_t Spacetree::orderCrowdedVertex(std::int32_t begin, std::int32_t end,
   for (const XAndId& p : byX_) place(p.id);
   for (const std::int32_t id : bigIds_) place(id);
   return begin + std::int32_t(byX_.size());
-}
-
-void Spacetree::gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
-                                            std::int64_t ak, AncestorCache& out) const {
-  out.candidates.clear();
-  out.crowdedVertices.clear();
-  const Level& level = levels_[coarseLevel];
-  for (int di = -1; di <= 1; ++di)
-    for (int dj = -1; dj <= 1; ++dj)
-      for (int dk = -1; dk <= 1; ++dk) {
-        const std::int32_t w = level.lookup.find(ai + di, aj + dj, ak + dk);
-        if (w == VertexLookup::kAbsent) continue;
-        const Vertex& u = level.vertices[w];
-        if (u.sortedByX())
-          out.crowdedVertices.push_back(w);
-        else
-          for (std::int32_t q = u.begin; q < u.end; ++q) out.candidates.push_back(q);
-      }
 }
 
 Spacetree::Box Spacetree::boxOf(std::int32_t begin, std::int32_t end) const {

@@ -5,10 +5,19 @@
 // the level of its smaller particle:
 //   - same level: a vertex against itself and its 13 "forward" neighbours (symmetry);
 //   - across levels: a vertex against its virtual links, i.e. the coarser real particles whose
-//     centre lies within r + 2 eps + h sqrt(3) of the vertex (the paper's projection radius).
+//     centre lies within r + 2 eps + h sqrt(3) of the vertex (the paper's projection radius)
+//     and whose vertex is one of the 3x3x3 around the finer vertex's nearest coarse vertex.
 // Levels are sparse: only vertices that host particles exist, so the memory is per particle,
 // not per domain volume. The tree is rebuilt from scratch by build(); drop (to the finest
 // admissible level) and lift (to a coarser one when a particle grows) happen there.
+//
+// No look-up tables: each level keeps its vertices sorted by (i, j, k) and grouped in rows of
+// equal (i, j). The forward neighbours of the vertices are found by walking the sorted list
+// with one cursor per neighbouring row (a fixed offset keeps the key order, so the cursors only
+// move forward), and the virtual links by each coarse particle visiting the finer vertices
+// inside its link ball, row by row (a binary search per row for the ball's k interval): the
+// cost of a big particle follows the vertices near its surface, not its volume, and vertices
+// far from every coarse particle cost nothing.
 //
 // Crowded vertices (>= 8 particles: a lifted cloud on a coarse level of the reluctant grid)
 // keep their particles ordered by x with a bounding box, and are pruned instead of paired in
@@ -26,12 +35,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "tree/CoarseNeighbourhoods.h"
 #include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
 #include "tree/SpacetreeStatistics.h"
 #include "tree/VertexKey.h"
-#include "tree/VertexLookup.h"
 
 namespace spacetree {
 
@@ -123,22 +130,21 @@ class Spacetree {
   // Regular levels rarely reach it; coarse levels holding a lifted cloud (reluctant grid) do.
   static constexpr std::int32_t kSweepAndPruneMinParticles = 8;
   static constexpr double kBigRadiusOverMedian = 4.0;
+  // The vertices of one level sharing (i, j): [begin, end) in Level::vertices, ordered by k;
+  // the rows sharing i form a slice, [firstRow, next slice's firstRow) in Level::rows.
+  struct Row {
+    std::int32_t j, begin, end;
+  };
+  struct Slice {
+    std::int32_t i, firstRow;
+  };
   struct Level {
     double meshSize = 0.0;
-    std::vector<Vertex> vertices;         // sorted by key
+    std::vector<Vertex> vertices;         // sorted by key: (i, j, k) lexicographically
+    std::vector<std::uint64_t> keys;      // their packed keys (the walks read only these)
+    std::vector<Row> rows;                // sorted by (i, j)
+    std::vector<Slice> slices;            // sorted by i, and a last one past the end
     std::vector<Box> boxes;               // of the crowded vertices' [begin, bigBegin)
-    VertexLookup lookup;                  // coordinates -> position in `vertices`
-    // Virtual-link candidates for finer vertices: precomputed per coarse vertex when many
-    // finer vertices will ask (dense fine levels), else gathered on demand and cached.
-    bool precomputedNeighbourhoods = false;
-    CoarseNeighbourhoods neighbourhoods;
-  };
-  // Coarse particles near the last ancestor vertex gathered on one coarser level: those of
-  // plain vertices, and the crowded vertices (slots), whose particles are pruned by position.
-  struct AncestorCache {
-    std::uint64_t ancestorKey = ~std::uint64_t(0);
-    std::vector<std::int32_t> candidates;
-    std::vector<std::int32_t> crowdedVertices;
   };
 
   // The traversal; onPair(a, b) receives positions in the sorted arrays.
@@ -146,10 +152,22 @@ class Spacetree {
   // (r_max + r_max' + 2 eps) pruneScale, a bound at or above the visitor's cut-off.
   template <class PairFunction>
   void sweep(PairFunction&& onPair, double pruneScale);
-  // One level of the sweep; returns its virtual links. kCrowded: the level or a coarser one
+  // Pairs within the vertices of level l and between forward neighbours. kCrowded: the level
   // holds crowded vertices (else their branches are compiled out).
   template <bool kCrowded, class PairFunction>
-  std::uint64_t sweepLevel(int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons);
+  void sweepLevel(int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons);
+  // Virtual links of the particles of coarse level m on the vertices of finer level l, and
+  // their pairs; returns the links. kCrowded: level l or m holds crowded vertices.
+  template <bool kCrowded, class PairFunction>
+  std::uint64_t linkLevels(int m, int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons,
+                           std::uint64_t& tests);
+  // The vertices of `level` with index in [lo, hi] per axis, slice by slice and row by row:
+  // sliceRange(i, jLo, jHi) and rowRange(i, j, kLo, kHi) may narrow the j range of a slice or
+  // the k range of a row (false: skip it); then f(slot) for each vertex. Only occupied slices
+  // and rows are visited.
+  template <class SliceRange, class RowRange, class F>
+  void forEachVertexIn(const Level& level, const std::int64_t lo[3], const std::int64_t hi[3],
+                       SliceRange&& sliceRange, RowRange&& rowRange, F&& f) const;
   // Pairs of two vertex-connected vertices of one level, at least one of them crowded: only
   // particles within reach of the other vertex's bounding box take part (a slab along the
   // shared face, edge or corner), then a sweep along x; without the slabs when the pair reach
@@ -158,6 +176,10 @@ class Spacetree {
   template <class PairFunction>
   [[gnu::noinline]] std::uint64_t sweepCrowdedPair(const Level& level, const Vertex& v, const Vertex& nb,
                                                    double halo, double pruneScale, PairFunction& onPair);
+  // Vertex index bounds of a coordinate range, t = (x - origin) / h, padded by one vertex
+  // (conversion truncates: for t < 0 it rounds up, which the padding still covers).
+  static std::int64_t indexBelow(double t) { return std::int64_t(t) - 1; }
+  static std::int64_t indexAbove(double t) { return std::int64_t(t) + 1; }
   // Relative margin of that bound over the cut-off (round-off of the x difference).
   static constexpr double kPruneMargin = 1e-9;
   int hostLevel(double required) const;
@@ -169,8 +191,6 @@ class Spacetree {
   void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
   // Orders the particles [begin, end) of one crowded vertex; returns its bigBegin.
   std::int32_t orderCrowdedVertex(std::int32_t begin, std::int32_t end, const double (*x)[3], const double* radius);
-  void gatherAncestorNeighbourhood(int coarseLevel, std::int64_t ai, std::int64_t aj,
-                                   std::int64_t ak, AncestorCache& out) const;
   bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
   // Virtual link: coarse particle q lies within r_q + linkReach of the vertex at (vx, vy, vz).
   bool linksTo(std::int32_t q, double vx, double vy, double vz, double linkReach) const {
@@ -231,8 +251,7 @@ class Spacetree {
 
   // Scratch, kept to avoid allocation on every build.
   std::vector<KeyedIndex> sortKeys_, sortScratch_;
-  std::vector<AncestorCache> ancestorCaches_;
-  std::vector<int> populatedCoarser_;
+  std::vector<int> populated_;  // levels hosting particles
   struct XAndId {
     double x;
     std::int32_t id;
@@ -249,242 +268,6 @@ class Spacetree {
   SpacetreeStatistics stats_;
 };
 
-// The 13 neighbour offsets that are lexicographically positive: each unordered pair of
-// vertex-connected vertices is visited from exactly one side.
-inline constexpr std::array<std::array<int, 3>, 13> kForwardNeighbourOffsets{{
-    {1, -1, -1}, {1, -1, 0}, {1, -1, 1}, {1, 0, -1}, {1, 0, 0}, {1, 0, 1}, {1, 1, -1},
-    {1, 1, 0}, {1, 1, 1}, {0, 1, -1}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}};
-
-template <class PairFunction>
-void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
-  std::uint64_t candidatePairs = 0;
-  const int nLevels = int(levels_.size());
-  for (auto& level : stats_.levels) level.virtualLinks = 0;
-  ancestorCaches_.resize(nLevels);
-  for (auto& cache : ancestorCaches_) cache.ancestorKey = ~std::uint64_t(0);
-
-  for (int l = 0; l < nLevels; ++l) {
-    const Level& level = levels_[l];
-    if (level.vertices.empty()) continue;
-    populatedCoarser_.clear();
-    bool crowded = !level.boxes.empty();
-    for (int m = 0; m < l; ++m) {
-      if (levels_[m].vertices.empty()) continue;
-      populatedCoarser_.push_back(m);
-      crowded = crowded || !levels_[m].boxes.empty();
-    }
-    // A level without crowded vertices, below none, runs the plain loop (its own code).
-    stats_.levels[l].virtualLinks = crowded ? sweepLevel<true>(l, onPair, pruneScale, candidatePairs)
-                                            : sweepLevel<false>(l, onPair, pruneScale, candidatePairs);
-  }
-  stats_.candidatePairs = candidatePairs;
-}
-
-template <bool kCrowded, class PairFunction>
-std::uint64_t Spacetree::sweepLevel(int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons) {
-  std::uint64_t candidatePairs = 0;  // local: kept in a register
-  const double halo = 2.0 * options_.epsilon;
-  const double sqrt3 = std::sqrt(3.0);
-  const Level& level = levels_[l];
-  const double h = level.meshSize;
-  // Virtual-link radius beyond the coarse particle's own radius (paper: r + 2 eps + h sqrt(d)).
-  const double linkReach = 2.0 * options_.epsilon + sqrt3 * h;
-  std::uint64_t virtualLinks = 0;
-  const bool dense = level.lookup.dense();
-  std::array<std::int64_t, kForwardNeighbourOffsets.size()> denseOffsets{};
-  if (dense)
-    for (std::size_t n = 0; n < denseOffsets.size(); ++n)
-      denseOffsets[n] = level.lookup.denseOffset(kForwardNeighbourOffsets[n][0],
-                                                 kForwardNeighbourOffsets[n][1],
-                                                 kForwardNeighbourOffsets[n][2]);
-
-  for (const Vertex& v : level.vertices) {
-    // 1. Real particles of this vertex among themselves.
-    const bool allActive = v.active == v.end - v.begin;  // no ghost: skip per-pair checks
-    if (kCrowded && v.sortedByX()) {
-      const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
-      for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
-        for (std::int32_t b = a + 1; b < v.bigBegin && sx_[b] - sx_[a] <= reach; ++b) {
-          if (!withinYZ(a, b, reach)) continue;
-          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
-          ++candidatePairs;
-        }
-      for (std::int32_t b = v.bigBegin; b < v.end; ++b)  // the big ones against all before them
-        for (std::int32_t a = v.begin; a < b; ++a)
-          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
-      candidatePairs += std::uint64_t(v.end - v.bigBegin) * (v.end - v.bigBegin - 1) / 2 +
-                        std::uint64_t(v.end - v.bigBegin) * (v.bigBegin - v.begin);
-    } else {
-      for (std::int32_t a = v.begin; a < v.end; ++a)
-        for (std::int32_t b = a + 1; b < v.end; ++b)
-          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
-      candidatePairs += std::uint64_t(v.end - v.begin) * (v.end - v.begin - 1) / 2;
-    }
-
-    // 2. Against the real particles of the forward vertex-connected neighbours.
-    const std::int64_t position =
-        dense ? level.lookup.densePosition(v.index.i, v.index.j, v.index.k) : 0;
-    for (int n = 0; n < int(kForwardNeighbourOffsets.size()); ++n) {
-      const auto& o = kForwardNeighbourOffsets[n];
-      const std::int32_t w =
-          dense ? level.lookup.atDensePosition(position + denseOffsets[n])
-                : level.lookup.find(std::int64_t(v.index.i) + o[0], std::int64_t(v.index.j) + o[1],
-                                    std::int64_t(v.index.k) + o[2]);
-      if (w == VertexLookup::kAbsent) continue;
-      const Vertex& nb = level.vertices[w];
-      if (v.active == 0 && nb.active == 0) continue;
-      if constexpr (kCrowded) {
-        if (v.sortedByX() || nb.sortedByX()) {
-          candidatePairs += sweepCrowdedPair(level, v, nb, halo, pruneScale, onPair);
-          continue;
-        }
-      }
-      if (allActive || nb.active == nb.end - nb.begin) {
-        for (std::int32_t a = v.begin; a < v.end; ++a)
-          for (std::int32_t b = nb.begin; b < nb.end; ++b) onPair(a, b);
-      } else {
-        for (std::int32_t a = v.begin; a < v.end; ++a)
-          for (std::int32_t b = nb.begin; b < nb.end; ++b)
-            if (isActive(a) || isActive(b)) onPair(a, b);
-      }
-      candidatePairs += std::uint64_t(v.end - v.begin) * (nb.end - nb.begin);
-    }
-
-    // 3. Against virtual links: real particles of coarser levels near this vertex. They are
-    //    found through the nearest vertex (ancestor) on each coarser populated level, whose
-    //    3x3x3 neighbourhood holds every coarse particle that can reach this vertex.
-    const double vx = origin_[0] + v.index.i * h;
-    const double vy = origin_[1] + v.index.j * h;
-    const double vz = origin_[2] + v.index.k * h;
-    // A link to coarse particle q pairs it with this vertex's particles; on a crowded vertex
-    // only with those whose x lies within reach of q's.
-    auto linked = [&](std::int32_t q) {
-      ++virtualLinks;
-      const bool qActive = isActive(q);
-      if (!qActive && v.active == 0) return;
-      std::int32_t smallBegin = v.begin, smallEnd = v.bigBegin;  // the whole vertex if plain
-      if (kCrowded && v.sortedByX()) {
-        const double pairReach = (sr_[q] + v.maxSmallRadius + halo) * pruneScale;
-        smallBegin = firstWithinX(v.begin, v.bigBegin, sx_[q], pairReach);
-        smallEnd = endWithinX(smallBegin, v.bigBegin, sx_[q], pairReach);
-      }
-      for (std::int32_t a = smallBegin; a < smallEnd; ++a)
-        if (qActive || allActive || isActive(a)) onPair(a, q);
-      for (std::int32_t a = v.bigBegin; a < v.end; ++a)
-        if (qActive || allActive || isActive(a)) onPair(a, q);
-      candidatePairs += std::uint64_t(smallEnd - smallBegin) + std::uint64_t(v.end - v.bigBegin);
-    };
-    auto link = [&](std::int32_t q) {
-      if (linksTo(q, vx, vy, vz, linkReach)) linked(q);
-    };
-    for (int m : populatedCoarser_) {
-      const Level& coarse = levels_[m];
-      const std::int64_t s = kPowersOfThree[l - m];
-      const std::int64_t half = (s - 1) / 2;  // s is odd: nearest coarse vertex, no ties
-      const std::int64_t ai = (std::int64_t(v.index.i) + half) / s;
-      const std::int64_t aj = (std::int64_t(v.index.j) + half) / s;
-      const std::int64_t ak = (std::int64_t(v.index.k) + half) / s;
-      CoarseNeighbourhoods::Neighbourhood candidates;
-      if (coarse.precomputedNeighbourhoods) {
-        candidates = coarse.neighbourhoods.near(ai, aj, ak);
-      } else {
-        AncestorCache& cache = ancestorCaches_[m];
-        const std::uint64_t ancestorKey = packVertexKey(ai, aj, ak);
-        if (cache.ancestorKey != ancestorKey) {
-          cache.ancestorKey = ancestorKey;
-          gatherAncestorNeighbourhood(m, ai, aj, ak, cache);
-        }
-        candidates.particles = {cache.candidates.data(), cache.candidates.data() + cache.candidates.size()};
-        candidates.crowdedVertices = {cache.crowdedVertices.data(),
-                                      cache.crowdedVertices.data() + cache.crowdedVertices.size()};
-      }
-      for (const std::int32_t* c = candidates.particles.begin; c != candidates.particles.end; ++c) link(*c);
-      if constexpr (kCrowded) {
-        // Crowded coarse vertices: only particles whose x lies within reach of the vertex can
-        // link (and none when the vertex is beyond reach of the box on any axis).
-        for (const std::int32_t* c = candidates.crowdedVertices.begin; c != candidates.crowdedVertices.end; ++c) {
-          const Vertex& u = coarse.vertices[*c];
-          const Box& box = coarse.boxes[u.box];
-          const double reach = (u.maxSmallRadius + linkReach) * (1.0 + kPruneMargin);
-          if (box.lo[0] - vx <= reach && vx - box.hi[0] <= reach && box.lo[1] - vy <= reach &&
-              vy - box.hi[1] <= reach && box.lo[2] - vz <= reach && vz - box.hi[2] <= reach) {
-            const std::int32_t first = firstWithinX(u.begin, u.bigBegin, vx, reach);
-            const std::int32_t count =
-                collectLinks(first, endWithinX(first, u.bigBegin, vx, reach), vx, vy, vz, linkReach);
-            for (std::int32_t t = 0; t < count; ++t) linked(linkHits_[std::size_t(t)]);
-          }
-          for (std::int32_t q = u.bigBegin; q < u.end; ++q) link(q);
-        }
-      }
-    }
-  }
-  comparisons += candidatePairs;
-  return virtualLinks;
-}
-
-template <class PairFunction>
-std::uint64_t Spacetree::sweepCrowdedPair(const Level& level, const Vertex& v, const Vertex& nb, double halo,
-                                          double pruneScale, PairFunction& onPair) {
-  const bool bothActive = v.active == v.end - v.begin && nb.active == nb.end - nb.begin;
-  std::uint64_t comparisons = 0;
-  // The ordinary particles: those of v near nb's box, and those of nb near theirs.
-  const double reach = (v.maxSmallRadius + nb.maxSmallRadius + halo) * pruneScale;
-  if (4.0 * reach >= level.meshSize) {
-    if (v.sortedByX() && nb.sortedByX()) {
-      // Both in x order: a window of nb's per particle of v.
-      std::int32_t start = nb.begin;
-      for (std::int32_t a = v.begin; a < v.bigBegin; ++a) {
-        const double xa = sx_[a];
-        while (start < nb.bigBegin && xa - sx_[start] > reach) ++start;
-        for (std::int32_t b = start; b < nb.bigBegin && sx_[b] - xa <= reach; ++b) {
-          if (!withinYZ(a, b, reach)) continue;
-          if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
-          ++comparisons;
-        }
-      }
-    } else {
-      for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
-        for (std::int32_t b = nb.begin; b < nb.bigBegin; ++b)
-          if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
-      comparisons += std::uint64_t(v.bigBegin - v.begin) * (nb.bigBegin - nb.begin);
-    }
-  } else {
-    Box nearV, nearNb;
-    particlesNearBox(v.begin, v.bigBegin, v.sortedByX(), smallBox(level, nb), reach, nearA_, nearV);
-    if (!nearA_.empty()) {
-      particlesNearBox(nb.begin, nb.bigBegin, nb.sortedByX(), nearV, reach, nearB_, nearNb);
-      if (v.sortedByX() && nb.sortedByX()) {
-        // Both in x order: a window of nb's per particle of v.
-        std::size_t start = 0;
-        for (const std::int32_t a : nearA_) {
-          const double xa = sx_[a];
-          while (start < nearB_.size() && xa - sx_[nearB_[start]] > reach) ++start;
-          for (std::size_t t = start; t < nearB_.size() && sx_[nearB_[t]] - xa <= reach; ++t) {
-            const std::int32_t b = nearB_[t];
-            if (!withinYZ(a, b, reach)) continue;
-            if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
-            ++comparisons;
-          }
-        }
-      } else {
-        for (const std::int32_t a : nearA_)
-          for (const std::int32_t b : nearB_)
-            if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
-        comparisons += std::uint64_t(nearA_.size()) * nearB_.size();
-      }
-    }
-  }
-  // The big ones of either vertex against everything of the other, unpruned.
-  if (nb.bigBegin < nb.end)
-    for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
-      for (std::int32_t b = nb.bigBegin; b < nb.end; ++b)
-        if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
-  for (std::int32_t a = v.bigBegin; a < v.end; ++a)
-    for (std::int32_t b = nb.begin; b < nb.end; ++b)
-      if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
-  comparisons += std::uint64_t(v.bigBegin - v.begin) * (nb.end - nb.bigBegin) +
-                 std::uint64_t(v.end - v.bigBegin) * (nb.end - nb.begin);
-  return comparisons;
-}
-
 }  // namespace spacetree
+
+#include "tree/SpacetreeSweep.h"  // the traversal templates

@@ -1,6 +1,6 @@
-// Open-addressing hash map from a packed vertex key to a vertex slot. Used for sparse levels
-// (see VertexLookup), where a dense array would cost memory proportional to the domain volume;
-// this costs memory per vertex.
+// Open-addressing hash map from a packed vertex key to a slot, for the persistent grid's sparse
+// sets of refined cells and counted vertices (VertexKeySet, VertexCounters), where a dense
+// array would cost memory proportional to the domain volume; this costs memory per vertex.
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,365 @@
+// The traversal of a built Spacetree (its member templates, included by Spacetree.h): per
+// populated level the pairs within and between forward-neighbour vertices (sorted-key walk),
+// then the virtual links of every coarser level's particles on its vertices (link balls, or
+// for a level of few vertices their coarse neighbourhoods), and the pruned pairs of crowded
+// vertices.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "tree/Spacetree.h"
+
+namespace spacetree {
+
+template <class PairFunction>
+void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
+  std::uint64_t candidatePairs = 0;
+  const int nLevels = int(levels_.size());
+  for (auto& level : stats_.levels) level.virtualLinks = level.linkTests = 0;
+  populated_.clear();
+  for (int l = 0; l < nLevels; ++l)
+    if (!levels_[l].vertices.empty()) populated_.push_back(l);
+  for (std::size_t f = 0; f < populated_.size(); ++f) {
+    const int l = populated_[f];
+    const bool crowded = !levels_[l].boxes.empty();
+    // A level without crowded vertices runs the plain loop (its own code).
+    if (crowded)
+      sweepLevel<true>(l, onPair, pruneScale, candidatePairs);
+    else
+      sweepLevel<false>(l, onPair, pruneScale, candidatePairs);
+    for (std::size_t c = 0; c < f; ++c) {
+      const int m = populated_[c];
+      stats_.levels[l].virtualLinks +=
+          crowded || !levels_[m].boxes.empty()
+              ? linkLevels<true>(m, l, onPair, pruneScale, candidatePairs, stats_.levels[l].linkTests)
+              : linkLevels<false>(m, l, onPair, pruneScale, candidatePairs, stats_.levels[l].linkTests);
+    }
+  }
+  stats_.candidatePairs = candidatePairs;
+}
+
+template <bool kCrowded, class PairFunction>
+void Spacetree::sweepLevel(int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons) {
+  std::uint64_t candidatePairs = 0;  // local: kept in a register
+  const double halo = 2.0 * options_.epsilon;
+  const Level& level = levels_[l];
+  const std::size_t nv = level.vertices.size();
+  const std::uint64_t* keys = level.keys.data();
+  // Forward neighbours of vertex (i, j, k): (i, j, k + 1), and the rows (i, j + 1),
+  // (i + 1, j - 1), (i + 1, j), (i + 1, j + 1) at k - 1 .. k + 1. Each row has a cursor at its
+  // first vertex at or after k - 1: key + offset, with no carry between the fields (indices
+  // are >= 0 and biased).
+  constexpr std::uint64_t kJ = std::uint64_t(1) << kVertexKeyBits, kI = kJ << kVertexKeyBits;
+  constexpr std::uint64_t kRowOffsets[4] = {kJ - 1, kI - kJ - 1, kI - 1, kI + kJ - 1};
+  std::size_t cursor[4] = {0, 0, 0, 0};
+
+  for (std::size_t p = 0; p < nv; ++p) {
+    const Vertex& v = level.vertices[p];
+    // 1. Real particles of this vertex among themselves.
+    const bool allActive = v.active == v.end - v.begin;  // no ghost: skip per-pair checks
+    if (kCrowded && v.sortedByX()) {
+      const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
+      for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
+        for (std::int32_t b = a + 1; b < v.bigBegin && sx_[b] - sx_[a] <= reach; ++b) {
+          if (!withinYZ(a, b, reach)) continue;
+          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+          ++candidatePairs;
+        }
+      for (std::int32_t b = v.bigBegin; b < v.end; ++b)  // the big ones against all before them
+        for (std::int32_t a = v.begin; a < b; ++a)
+          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+      candidatePairs += std::uint64_t(v.end - v.bigBegin) * (v.end - v.bigBegin - 1) / 2 +
+                        std::uint64_t(v.end - v.bigBegin) * (v.bigBegin - v.begin);
+    } else {
+      for (std::int32_t a = v.begin; a < v.end; ++a)
+        for (std::int32_t b = a + 1; b < v.end; ++b)
+          if (allActive || isActive(a) || isActive(b)) onPair(a, b);
+      candidatePairs += std::uint64_t(v.end - v.begin) * (v.end - v.begin - 1) / 2;
+    }
+
+    // 2. Against the real particles of the forward vertex-connected neighbours.
+    auto pairWith = [&](std::size_t w) {
+      const Vertex& nb = level.vertices[w];
+      if (v.active == 0 && nb.active == 0) return;
+      if constexpr (kCrowded) {
+        if (v.sortedByX() || nb.sortedByX()) {
+          candidatePairs += sweepCrowdedPair(level, v, nb, halo, pruneScale, onPair);
+          return;
+        }
+      }
+      if (allActive || nb.active == nb.end - nb.begin) {
+        for (std::int32_t a = v.begin; a < v.end; ++a)
+          for (std::int32_t b = nb.begin; b < nb.end; ++b) onPair(a, b);
+      } else {
+        for (std::int32_t a = v.begin; a < v.end; ++a)
+          for (std::int32_t b = nb.begin; b < nb.end; ++b)
+            if (isActive(a) || isActive(b)) onPair(a, b);
+      }
+      candidatePairs += std::uint64_t(v.end - v.begin) * (nb.end - nb.begin);
+    };
+    const std::uint64_t key = keys[p];
+    if (p + 1 < nv && keys[p + 1] == key + 1) pairWith(p + 1);
+    for (int c = 0; c < 4; ++c) {
+      const std::uint64_t first = key + kRowOffsets[c];
+      std::size_t t = cursor[c];
+      while (t < nv && keys[t] < first) ++t;
+      cursor[c] = t;
+      for (; t < nv && keys[t] <= first + 2; ++t) pairWith(t);
+    }
+  }
+  comparisons += candidatePairs;
+}
+
+template <class SliceRange, class RowRange, class F>
+void Spacetree::forEachVertexIn(const Level& level, const std::int64_t lo[3], const std::int64_t hi[3],
+                                SliceRange&& sliceRange, RowRange&& rowRange, F&& f) const {
+  if (level.rows.empty()) return;
+  const Slice* lastSlice = level.slices.data() + level.slices.size() - 1;  // past the end
+  const Slice* slice = std::partition_point(level.slices.data(), lastSlice,
+                                            [&](const Slice& t) { return t.i < lo[0]; });
+  const Row* rows = level.rows.data();
+  const std::uint64_t* keys = level.keys.data();
+  for (; slice != lastSlice && slice->i <= hi[0]; ++slice) {
+    std::int64_t j0 = lo[1], j1 = hi[1];
+    if (!sliceRange(std::int64_t(slice->i), j0, j1)) continue;
+    const Row* row = rows + slice->firstRow;
+    const Row* rowEnd = rows + slice[1].firstRow;
+    if (rowEnd - row > 8)
+      row = std::partition_point(row, rowEnd, [&](const Row& r) { return r.j < j0; });
+    else
+      while (row != rowEnd && row->j < j0) ++row;
+    for (; row != rowEnd && row->j <= j1; ++row) {
+      std::int64_t k0 = lo[2], k1 = hi[2];
+      if (!rowRange(std::int64_t(slice->i), std::int64_t(row->j), k0, k1)) continue;
+      if (k1 < 0) continue;  // vertex indices are >= 0
+      // The keys of one row differ only in k: compare them directly.
+      const std::uint64_t base = keys[row->begin] & ~kVertexKeyMask;
+      const std::uint64_t first = base + std::uint64_t(std::max<std::int64_t>(k0, 0) + kVertexKeyBias);
+      const std::uint64_t last = base + std::uint64_t(k1 + kVertexKeyBias);
+      std::int32_t w = row->begin;
+      if (row->end - w > 8)
+        w = std::int32_t(std::lower_bound(keys + w, keys + row->end, first) - keys);
+      else
+        while (w < row->end && keys[w] < first) ++w;
+      for (; w < row->end && keys[w] <= last; ++w) f(w);
+    }
+  }
+}
+
+template <bool kCrowded, class PairFunction>
+std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double pruneScale,
+                                    std::uint64_t& comparisons, std::uint64_t& tests) {
+  std::uint64_t candidatePairs = 0, virtualLinks = 0, linkTests = 0;
+  const double halo = 2.0 * options_.epsilon;
+  const Level& coarse = levels_[m];
+  const Level& fine = levels_[l];
+  const double h = fine.meshSize;
+  // Virtual-link radius beyond the coarse particle's own radius (paper: r + 2 eps + h sqrt(d)).
+  const double linkReach = 2.0 * options_.epsilon + std::sqrt(3.0) * h;
+  // A fine vertex takes links only from the 3x3x3 coarse vertices around its nearest coarse
+  // vertex: fine index n has the nearest coarse index (n + half) / s.
+  const std::int64_t s = kPowersOfThree[l - m], half = (s - 1) / 2;
+  const double inverse = 1.0 / h;
+
+  // A link to coarse particle q pairs it with the vertex's particles; on a crowded vertex only
+  // with those whose x lies within reach of q's.
+  auto linked = [&](const Vertex& v, std::int32_t q) {
+    ++virtualLinks;
+    const bool qActive = isActive(q);
+    if (!qActive && v.active == 0) return;
+    const bool allActive = v.active == v.end - v.begin;
+    std::int32_t smallBegin = v.begin, smallEnd = v.bigBegin;  // the whole vertex if plain
+    if (kCrowded && v.sortedByX()) {
+      const double pairReach = (sr_[q] + v.maxSmallRadius + halo) * pruneScale;
+      smallBegin = firstWithinX(v.begin, v.bigBegin, sx_[q], pairReach);
+      smallEnd = endWithinX(smallBegin, v.bigBegin, sx_[q], pairReach);
+    }
+    for (std::int32_t a = smallBegin; a < smallEnd; ++a)
+      if (qActive || allActive || isActive(a)) onPair(a, q);
+    for (std::int32_t a = v.bigBegin; a < v.end; ++a)
+      if (qActive || allActive || isActive(a)) onPair(a, q);
+    candidatePairs += std::uint64_t(smallEnd - smallBegin) + std::uint64_t(v.end - v.bigBegin);
+  };
+  // The fine vertices within r_q + linkReach of q's centre: rows whose (i, j) lie beyond it
+  // are skipped with the partial sums linksTo computes (so no vertex it would accept), the k
+  // range of the others from the remaining reach (padded by a vertex), then linksTo decides.
+  auto linkBall = [&](std::int32_t q, const std::int64_t near[2][3]) {
+    const double reach = sr_[q] + linkReach, reach2 = reach * reach;
+    const double c[3] = {sx_[q], sy_[q], sz_[q]};
+    std::int64_t lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::max(near[0][d], indexBelow((c[d] - reach - origin_[d]) * inverse));
+      hi[d] = std::min(near[1][d], indexAbove((c[d] + reach - origin_[d]) * inverse));
+    }
+    double dx2 = 0.0;  // of the current slice
+    forEachVertexIn(
+        fine, lo, hi,
+        [&](std::int64_t i, std::int64_t& j0, std::int64_t& j1) {
+          const double dx = c[0] - (origin_[0] + double(i) * h);
+          dx2 = dx * dx;
+          const double rest = reach2 - dx2;
+          if (!(rest > 0.0)) return false;
+          const double w = std::sqrt(rest);
+          j0 = std::max(j0, indexBelow((c[1] - w - origin_[1]) * inverse));
+          j1 = std::min(j1, indexAbove((c[1] + w - origin_[1]) * inverse));
+          return j0 <= j1;
+        },
+        [&](std::int64_t, std::int64_t j, std::int64_t& k0, std::int64_t& k1) {
+          const double dy = c[1] - (origin_[1] + double(j) * h);
+          const double rest = reach2 - (dx2 + dy * dy);
+          if (!(rest > 0.0)) return false;
+          const double w = std::sqrt(rest);
+          k0 = std::max(k0, indexBelow((c[2] - w - origin_[2]) * inverse));
+          k1 = std::min(k1, indexAbove((c[2] + w - origin_[2]) * inverse));
+          return k0 <= k1;
+        },
+        [&](std::int32_t w) {
+          const Vertex& v = fine.vertices[std::size_t(w)];
+          ++linkTests;
+          if (linksTo(q, origin_[0] + v.index.i * h, origin_[1] + v.index.j * h, origin_[2] + v.index.k * h,
+                      linkReach))
+            linked(v, q);
+        });
+  };
+
+  // The links of fine vertex v to crowded coarse vertex u: when v is within reach of u's box
+  // on every axis, the particles in the x window of v.
+  auto linkCrowded = [&](const Vertex& u, const Vertex& v, double vx, double vy, double vz) {
+    const Box& box = coarse.boxes[std::size_t(u.box)];
+    const double reach = (u.maxSmallRadius + linkReach) * (1.0 + kPruneMargin);
+    if (box.lo[0] - vx <= reach && vx - box.hi[0] <= reach && box.lo[1] - vy <= reach && vy - box.hi[1] <= reach &&
+        box.lo[2] - vz <= reach && vz - box.hi[2] <= reach) {
+      const std::int32_t first = firstWithinX(u.begin, u.bigBegin, vx, reach);
+      const std::int32_t last = endWithinX(first, u.bigBegin, vx, reach);
+      linkTests += std::uint64_t(last - first);
+      const std::int32_t count = collectLinks(first, last, vx, vy, vz, linkReach);
+      for (std::int32_t t = 0; t < count; ++t) linked(v, linkHits_[std::size_t(t)]);
+    }
+  };
+  auto all2 = [](std::int64_t, std::int64_t&, std::int64_t&) { return true; };
+  auto all3 = [](std::int64_t, std::int64_t, std::int64_t&, std::int64_t&) { return true; };
+
+  if (fine.vertices.size() < stats_.levels[m].realParticles) {
+    // Few fine vertices (a level holding a handful of the smallest particles): each one looks
+    // for the coarse vertices around its nearest coarse vertex instead.
+    for (const Vertex& v : fine.vertices) {
+      const double vx = origin_[0] + v.index.i * h, vy = origin_[1] + v.index.j * h, vz = origin_[2] + v.index.k * h;
+      const std::int64_t vc[3] = {v.index.i, v.index.j, v.index.k};
+      std::int64_t lo[3], hi[3];
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = (vc[d] + half) / s - 1;
+        hi[d] = lo[d] + 2;
+      }
+      forEachVertexIn(coarse, lo, hi, all2, all3, [&](std::int32_t cu) {
+        const Vertex& u = coarse.vertices[std::size_t(cu)];
+        std::int32_t q = u.begin;
+        if (kCrowded && u.sortedByX()) {
+          linkCrowded(u, v, vx, vy, vz);
+          q = u.bigBegin;
+        }
+        linkTests += std::uint64_t(u.end - q);
+        for (; q < u.end; ++q)
+          if (linksTo(q, vx, vy, vz, linkReach)) linked(v, q);
+      });
+    }
+  } else {
+    for (const Vertex& u : coarse.vertices) {
+      const std::int64_t uc[3] = {u.index.i, u.index.j, u.index.k};
+      std::int64_t near[2][3];
+      for (int d = 0; d < 3; ++d) {
+        near[0][d] = (uc[d] - 1) * s - half;
+        near[1][d] = (uc[d] + 1) * s + half;
+      }
+      std::int32_t q = u.begin;
+      if (kCrowded && u.sortedByX()) {
+        // A crowded coarse vertex: the fine vertices near its box scan the x window of its
+        // ordered particles; the big ones go one by one.
+        const Box& box = coarse.boxes[std::size_t(u.box)];
+        const double reach = (u.maxSmallRadius + linkReach) * (1.0 + kPruneMargin);
+        std::int64_t lo[3], hi[3];
+        for (int d = 0; d < 3; ++d) {
+          lo[d] = std::max(near[0][d], indexBelow((box.lo[d] - reach - origin_[d]) * inverse));
+          hi[d] = std::min(near[1][d], indexAbove((box.hi[d] + reach - origin_[d]) * inverse));
+        }
+        forEachVertexIn(fine, lo, hi, all2, all3, [&](std::int32_t w) {
+          const Vertex& v = fine.vertices[std::size_t(w)];
+          linkCrowded(u, v, origin_[0] + v.index.i * h, origin_[1] + v.index.j * h, origin_[2] + v.index.k * h);
+        });
+        q = u.bigBegin;
+      }
+      for (; q < u.end; ++q) linkBall(q, near);
+    }
+  }
+  comparisons += candidatePairs;
+  tests += linkTests;
+  return virtualLinks;
+}
+
+template <class PairFunction>
+std::uint64_t Spacetree::sweepCrowdedPair(const Level& level, const Vertex& v, const Vertex& nb, double halo,
+                                          double pruneScale, PairFunction& onPair) {
+  const bool bothActive = v.active == v.end - v.begin && nb.active == nb.end - nb.begin;
+  std::uint64_t comparisons = 0;
+  // The ordinary particles: those of v near nb's box, and those of nb near theirs.
+  const double reach = (v.maxSmallRadius + nb.maxSmallRadius + halo) * pruneScale;
+  if (4.0 * reach >= level.meshSize) {
+    if (v.sortedByX() && nb.sortedByX()) {
+      // Both in x order: a window of nb's per particle of v.
+      std::int32_t start = nb.begin;
+      for (std::int32_t a = v.begin; a < v.bigBegin; ++a) {
+        const double xa = sx_[a];
+        while (start < nb.bigBegin && xa - sx_[start] > reach) ++start;
+        for (std::int32_t b = start; b < nb.bigBegin && sx_[b] - xa <= reach; ++b) {
+          if (!withinYZ(a, b, reach)) continue;
+          if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+          ++comparisons;
+        }
+      }
+    } else {
+      for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
+        for (std::int32_t b = nb.begin; b < nb.bigBegin; ++b)
+          if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+      comparisons += std::uint64_t(v.bigBegin - v.begin) * (nb.bigBegin - nb.begin);
+    }
+  } else {
+    Box nearV, nearNb;
+    particlesNearBox(v.begin, v.bigBegin, v.sortedByX(), smallBox(level, nb), reach, nearA_, nearV);
+    if (!nearA_.empty()) {
+      particlesNearBox(nb.begin, nb.bigBegin, nb.sortedByX(), nearV, reach, nearB_, nearNb);
+      if (v.sortedByX() && nb.sortedByX()) {
+        // Both in x order: a window of nb's per particle of v.
+        std::size_t start = 0;
+        for (const std::int32_t a : nearA_) {
+          const double xa = sx_[a];
+          while (start < nearB_.size() && xa - sx_[nearB_[start]] > reach) ++start;
+          for (std::size_t t = start; t < nearB_.size() && sx_[nearB_[t]] - xa <= reach; ++t) {
+            const std::int32_t b = nearB_[t];
+            if (!withinYZ(a, b, reach)) continue;
+            if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+            ++comparisons;
+          }
+        }
+      } else {
+        for (const std::int32_t a : nearA_)
+          for (const std::int32_t b : nearB_)
+            if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+        comparisons += std::uint64_t(nearA_.size()) * nearB_.size();
+      }
+    }
+  }
+  // The big ones of either vertex against everything of the other, unpruned.
+  if (nb.bigBegin < nb.end)
+    for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
+      for (std::int32_t b = nb.bigBegin; b < nb.end; ++b)
+        if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+  for (std::int32_t a = v.bigBegin; a < v.end; ++a)
+    for (std::int32_t b = nb.begin; b < nb.end; ++b)
+      if (bothActive || isActive(a) || isActive(b)) onPair(a, b);
+  comparisons += std::uint64_t(v.bigBegin - v.begin) * (nb.end - nb.bigBegin) +
+                 std::uint64_t(v.end - v.bigBegin) * (nb.end - nb.begin);
+  return comparisons;
+}
+
+}  // namespace spacetree

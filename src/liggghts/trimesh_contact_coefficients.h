@@ -1,0 +1,54 @@
+/* spacetree-dem: the contact model of pair_style trimesh for every type pair, from the
+   pair_style keywords and the LIGGGHTS materials (fix property/global youngsModulus,
+   poissonsRatio [peratomtype], coefficientRestitution, coefficientFriction,
+   cohesionEnergyDensity [peratomtypepair]); explicit keywords override the materials for every
+   type pair. The mapping of materials to halo coefficients is the core's
+   (contact_model/MaterialMapping.h); this file looks them up, checks them and says which one is
+   missing or out of range, and prints per type pair the coefficients, the contact time and the
+   largest stable time step. */
+
+#ifndef LMP_TRIMESH_CONTACT_COEFFICIENTS_H
+#define LMP_TRIMESH_CONTACT_COEFFICIENTS_H
+
+#include <limits>
+
+#include "contact_model/ContactModel.h"
+#include "pointers.h"
+
+namespace LAMMPS_NS {
+
+struct TrimeshContactSettings {
+  spacetree::contact_model::ContactModelSpec spec;
+  double eps = 0.0;
+  // explicit coefficients for every type pair; NaN: not given (from the materials)
+  double stiffness = std::numeric_limits<double>::quiet_NaN();             // N/m
+  double damping = std::numeric_limits<double>::quiet_NaN();               // sqrt(kg)/s
+  double friction = std::numeric_limits<double>::quiet_NaN();              // -
+  double sliding_damping = std::numeric_limits<double>::quiet_NaN();       // N s/m
+  double tangential_stiffness = std::numeric_limits<double>::quiet_NaN();  // N/m
+};
+
+class TrimeshContactCoefficients : protected Pointers {
+ public:
+  explicit TrimeshContactCoefficients(class LAMMPS *lmp) : Pointers(lmp) {}
+  // One model per type pair that can touch (both types with a template, not both fixed);
+  // error->all naming the keyword or material property and the type pair otherwise.
+  spacetree::contact_model::ContactModelTable build(const TrimeshContactSettings &settings,
+                                                   class FixTrimeshTemplate *templ);
+  // Rank 0 prints, per type pair: S, D, restitution, friction, k_t, contact time, largest stable
+  // time step; warns when the time step exceeds it.
+  void report(const spacetree::contact_model::ContactModelTable &table,
+              const TrimeshContactSettings &settings, class FixTrimeshTemplate *templ);
+
+ private:
+  spacetree::contact_model::ContactParameters parameters(int i, int j,
+                                                         const TrimeshContactSettings &settings,
+                                                         class FixTrimeshTemplate *templ);
+  class FixPropertyGlobal *material(const char *name, bool pair, const char *why);
+  double per_type(const char *name, int t, const char *why);
+  double per_pair(const char *name, int i, int j, const char *why);
+};
+
+}
+
+#endif
