@@ -110,7 +110,7 @@ stage_fuzz() {
   if build-fuzz/tests/fuzz/fuzz_mesh_reader -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 \
        -print_final_stats=1 -artifact_prefix=build-fuzz/findings/ \
        build-fuzz/corpus tests/fuzz/corpus/mesh >build-fuzz/fuzz.log 2>&1; then
-    note "fuzz: $(grep -E '^#[0-9]+ +DONE' build-fuzz/fuzz.log | tail -1 | sed -E 's/ +/ /g'), ${seconds} s, no finding"
+    note "fuzz: $(grep -E '^#[0-9]+[[:space:]]+DONE' build-fuzz/fuzz.log | tail -1 | sed -E 's/[[:space:]]+/ /g'), ${seconds} s, no finding"
   else
     grep -E 'mesh_reader_fuzzer:|ERROR|SUMMARY|Test unit written' build-fuzz/fuzz.log | head -20
     note "fuzz: FINDING (build-fuzz/findings/, build-fuzz/fuzz.log)"
