@@ -13,13 +13,7 @@ if [ "${SKIP_SETUP:-0}" != 1 ]; then
   bash scripts/setup.sh
 fi
 
-# ccache: share hits between build directories, keep the cache bounded, and fall back to a
-# cache inside the build directory when $HOME is unusable (e.g. CI without a home).
-export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$here}
-export CCACHE_MAXSIZE=${CCACHE_MAXSIZE:-4G}
-if [ -z "${CCACHE_DIR:-}" ] && { [ -z "${HOME:-}" ] || ! mkdir -p "$HOME/.cache" 2>/dev/null || [ ! -w "$HOME/.cache" ]; }; then
-  export CCACHE_DIR="$here/$build_dir/.ccache"
-fi
+source "$here/scripts/ccache_env.sh"
 
 gen=(-G Ninja)
 if [ -f "$build_dir/CMakeCache.txt" ]; then gen=(); fi   # keep the generator of an existing build dir

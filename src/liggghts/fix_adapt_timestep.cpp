@@ -10,6 +10,7 @@
 #include "comm.h"
 #include "compute.h"
 #include "error.h"
+#include "fix_lookup.h"
 #include "force.h"
 #include "granular_list_copy.h"
 #include "modify.h"
@@ -60,7 +61,12 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   if (narg < 5 || strcmp(arg[3],"creep") != 0)
     error->all(FLERR,"Illegal fix adapt/timestep command: expected 'creep C' after the style");
   policy.creep = force->numeric(FLERR,arg[4]);
-  if (!(policy.creep >= 1.0)) error->all(FLERR,"Illegal fix adapt/timestep command: creep must be >= 1");
+  if (!(policy.creep >= 1.0 && policy.creep <= spacetree::kMaxCreep))
+    error->all(FLERR,"Illegal fix adapt/timestep command: creep must be in [1, 2] (the growth "
+               "factor per step; a larger one does not creep, the paper uses 1.1)");
+  if (find_other_fix_of_style(modify,"adapt/timestep",this))
+    error->all(FLERR,"Fix adapt/timestep: only one fix adapt/timestep may exist (each would set "
+               "the global time step)");
 
   bool dtcontact_set = false, penetration_set = false, dtrest_set = false;
   int iarg = 5;

@@ -11,6 +11,7 @@
 
 #include "comm.h"
 #include "error.h"
+#include "fix_lookup.h"
 #include "force.h"
 #include "modify.h"
 #include "neigh_spacetree.h"
@@ -99,7 +100,7 @@ FixSpacetree::FixSpacetree(LAMMPS *lmp, int narg, char **arg) :
   // pair is then checked in restart() / init().
   if (given[kShock] == given[kThreshold]) check_options();
   if (given[kVtk]) check_options();
-  if (modify->find_fix_style_strict("spacetree",0))
+  if (find_other_fix_of_style(modify,"spacetree",this))
     error->all(FLERR,"Fix spacetree: only one fix spacetree may exist");
   if (vtk_every > 0) nevery = vtk_every;
 }

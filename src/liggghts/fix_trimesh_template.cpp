@@ -19,6 +19,7 @@
 #include "fix_template_trimesh.h"
 #include "fix_trimesh_state.h"
 #include "force.h"
+#include "geometry/SphereMesh.h"
 #include "modify.h"
 
 using namespace LAMMPS_NS;
@@ -97,7 +98,9 @@ FixTrimeshTemplate::FixTrimeshTemplate(LAMMPS *lmp, int narg, char **arg) :
     if (!(src.density > 0.0)) error->all(FLERR,"Illegal fix trimesh/template command: density must be > 0");
     if (!(src.scale > 0.0)) error->all(FLERR,"Illegal fix trimesh/template command: scale must be > 0");
     if (src.kind == TrimeshTypeSource::Dented) {
-      if (src.ntri < 12) error->all(FLERR,"Illegal fix trimesh/template command: dented needs ntri >= 12");
+      if (src.ntri < 12 || src.ntri > spacetree::geometry::kMaxSphereMeshTriangles)
+        bad(error,"Illegal fix trimesh/template command: dented needs ntri >= 12 and <= %s",
+            std::to_string(spacetree::geometry::kMaxSphereMeshTriangles).c_str());
       if (!(src.radius > 0.0)) error->all(FLERR,"Illegal fix trimesh/template command: dented needs radius > 0");
       if (!(src.amplitude >= 0.0 && src.amplitude < 1.0))
         error->all(FLERR,"Illegal fix trimesh/template command: dented amplitude must be in [0,1)");
@@ -266,8 +269,9 @@ void FixTrimeshTemplate::set_halo(double eps)
 FixTrimeshTemplate *FixTrimeshTemplate::find(LAMMPS *lmp, const char *who)
 {
   FixTrimeshTemplate *found = NULL;
+  // A NULL slot is a fix being replaced by ID while a constructor asks (fix_lookup.h).
   for (int i = 0; i < lmp->modify->nfix; i++)
-    if (strcmp(lmp->modify->fix[i]->style,"trimesh/template") == 0) {
+    if (lmp->modify->fix[i] && strcmp(lmp->modify->fix[i]->style,"trimesh/template") == 0) {
       if (found) {
         char msg[256];
         snprintf(msg,sizeof(msg),"%s: more than one fix trimesh/template",who);

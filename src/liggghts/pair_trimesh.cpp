@@ -34,6 +34,7 @@
 #include "neighbor.h"
 #include "trimesh_contact_body.h"
 #include "trimesh_contact_coefficients.h"
+#include "trimesh_deck_checks.h"
 #include "trimesh_parallel_contacts.h"
 #include "trimesh_wall_contacts.h"
 #include "contact/SphereMeshContact.h"
@@ -325,6 +326,8 @@ void PairTrimesh::init_style()
 
   templ->set_halo(model->contact.epsilon);
   templ->apply_to_atoms(false);   // radius = bounding radius + eps before the neighbour lists
+  check_template_types_reach_trimesh(lmp,*templ);
+  check_grains_fit_box(lmp,*templ);
 
   if (!model->walls) model->walls.reset(new TrimeshWallContacts(lmp));
   model->walls->init(templ,model->contact);

@@ -49,6 +49,12 @@ TEST(AdaptiveTimestep, SkinAndCeilingCapTheStep) {
   EXPECT_THROW(nextTimestep(0.0, policy, limits, noVeto.limit()), std::invalid_argument);
   policy.creep = 0.5;
   EXPECT_THROW(nextTimestep(1e-6, policy, limits, noVeto.limit()), std::invalid_argument);
+  policy.creep = kMaxCreep;  // doubling is the most creep may do
+  EXPECT_NO_THROW(nextTimestep(1e-6, policy, limits, noVeto.limit()));
+  for (double creep : {2.5, 1e300, double(INFINITY), double(NAN)}) {
+    policy.creep = creep;
+    EXPECT_THROW(nextTimestep(1e-6, policy, limits, noVeto.limit()), std::invalid_argument) << creep;
+  }
 }
 
 TEST(TimestepVeto, CutsCriticalApproachesToASafeFractionOfTheGap) {

@@ -13,6 +13,8 @@
 
 #include <unistd.h>
 
+#include "mesh_file_fixture.h"
+
 #include "geometry/DentedSphere.h"
 #include "geometry/MeshIO.h"
 #include "geometry/MeshValidation.h"
@@ -24,22 +26,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-class MeshFiles : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("spacetree_mesh_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& content) const {
-    std::ofstream(path(name), std::ios::binary) << content;
-    return path(name);
-  }
-  std::filesystem::path dir_;
-};
+class MeshFiles : public MeshFileFixture {};
 
 // A mesh with awkward coordinates: rotated, shifted, non-round numbers.
 TriangleMesh awkwardBox() {

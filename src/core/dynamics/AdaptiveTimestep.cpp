@@ -22,7 +22,8 @@ double contactCeiling(const TimestepPolicy& policy, double contactSpeed) {
 
 TimestepDecision nextTimestep(double dt, const TimestepPolicy& policy, const TimestepLimits& limits,
                               double vetoLimit) {
-  if (!(policy.creep >= 1.0)) throw std::invalid_argument("nextTimestep: creep factor must be >= 1");
+  if (!(policy.creep >= 1.0 && policy.creep <= kMaxCreep))
+    throw std::invalid_argument("nextTimestep: creep factor must be in [1, 2]");
   if (!(dt > 0.0)) throw std::invalid_argument("nextTimestep: dt must be > 0");
   double next = policy.creep * dt;
   if (policy.dtMax > 0.0) next = std::min(next, policy.dtMax);

@@ -6,8 +6,13 @@
 
 namespace spacetree {
 
+// Largest growth factor per step: a step that more than doubles at once does not creep (with
+// C = 1e300 the step jumps to its caps after every collapse; a two-sphere hooke collision then
+// gains energy instead of keeping restitution 0.5).
+inline constexpr double kMaxCreep = 2.0;
+
 struct TimestepPolicy {
-  double creep = 1.1;    // growth factor C > 1 per step
+  double creep = 1.1;    // growth factor C per step, in [1, kMaxCreep]
   double dtMin = 0.0;    // floor: a veto never cuts below it (reported when hit)
   double dtMax = 0.0;    // ceiling (e.g. a fraction of the contact time); 0 = none
   double dtContact = 0.0;  // ceiling while any pair is in contact (resolves the contact); 0 = none

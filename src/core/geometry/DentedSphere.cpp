@@ -2,14 +2,16 @@
 
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include "geometry/SphereMesh.h"
 
 namespace spacetree::geometry {
 
 TriangleMesh dentedSphere(const DentedSphereOptions& options) {
-  if (options.triangles < 12)
-    throw std::invalid_argument("dentedSphere: need at least 12 triangles");
+  if (options.triangles < 12 || options.triangles > kMaxSphereMeshTriangles)
+    throw std::invalid_argument("dentedSphere: need 12 to " +
+                                std::to_string(kMaxSphereMeshTriangles) + " triangles");
   if (!(options.radius > 0.0)) throw std::invalid_argument("dentedSphere: radius must be > 0");
   if (!(options.amplitude >= 0.0 && options.amplitude < 1.0))
     throw std::invalid_argument("dentedSphere: amplitude must be in [0, 1)");

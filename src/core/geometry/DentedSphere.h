@@ -21,7 +21,8 @@ struct DentedSphereOptions {
   std::uint64_t seed = 1;
 };
 
-// Throws std::invalid_argument for triangles < 12, radius <= 0 or amplitude outside [0, 1).
+// Throws std::invalid_argument for triangles outside [12, kMaxSphereMeshTriangles] (10^6,
+// SphereMesh.h), radius <= 0 or amplitude outside [0, 1).
 TriangleMesh dentedSphere(const DentedSphereOptions& options);
 
 }  // namespace spacetree::geometry

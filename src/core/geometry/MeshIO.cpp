@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -20,12 +21,33 @@ namespace {
 }
 
 std::string readWholeFile(const std::string& path) {
+  // A directory opens as a stream on Linux and only fails inside the read, with a message
+  // that does not name it: refuse it first.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    fail(path, "is a directory, not a mesh file");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, std::string("cannot open mesh file (") + std::strerror(errno) + ")");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes;
+  try {
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::exception& e) {
+    fail(path, std::string("read error (") + e.what() + ")");
+  }
   if (in.bad()) fail(path, "read error");
   if (bytes.empty()) fail(path, "empty mesh file");
   return bytes;
+}
+
+// Non-finite coordinates are refused where they are read: the vertex merger below orders
+// points by value, which NaN would break (a NaN corner could be merged into a valid vertex).
+void requireFinite(const std::string& path, const Eigen::Vector3d& p, const std::string& where) {
+  if (p.allFinite()) return;
+  std::ostringstream text;
+  text.precision(17);
+  text << where << ": non-finite vertex coordinate (" << p.x() << ", " << p.y() << ", " << p.z()
+       << ")";
+  fail(path, text.str());
 }
 
 std::string lowerExtension(const std::string& path) {
@@ -37,7 +59,8 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-// Merges bitwise-identical points (STL stores every triangle's corners separately).
+// Merges bitwise-identical points (STL stores every triangle's corners separately). Points
+// must be finite (requireFinite): std::map needs a strict weak order, which NaN breaks.
 class VertexMerger {
  public:
   explicit VertexMerger(TriangleMesh& mesh) : mesh_(mesh) {}
@@ -86,10 +109,13 @@ TriangleMesh parseBinaryStl(const std::string& path, const std::string& bytes) {
   for (std::uint32_t t = 0; t < count; ++t) {
     const unsigned char* record = data + 84 + 50 * std::size_t(t) + 12;  // skip the normal
     std::array<int, 3> face;
-    for (int v = 0; v < 3; ++v)
-      face[v] = merger.index(Eigen::Vector3d(littleEndianFloat(record + 12 * v),
-                                             littleEndianFloat(record + 12 * v + 4),
-                                             littleEndianFloat(record + 12 * v + 8)));
+    for (int v = 0; v < 3; ++v) {
+      const Eigen::Vector3d p(littleEndianFloat(record + 12 * v),
+                              littleEndianFloat(record + 12 * v + 4),
+                              littleEndianFloat(record + 12 * v + 8));
+      requireFinite(path, p, "triangle " + std::to_string(t) + " corner " + std::to_string(v));
+      face[v] = merger.index(p);
+    }
     mesh.triangles.push_back(face);
   }
   if (mesh.triangles.empty()) fail(path, "binary STL without triangles");
@@ -134,7 +160,7 @@ class Tokens {
     const double value = std::strtod(token.c_str(), &end);
     if (end == token.c_str() || *end != '\0')
       fail(path, "line " + std::to_string(line) + ": malformed number '" + token + "'");
-    return value;  // inf/nan parse; validateMesh rejects them with a clear message
+    return value;  // inf/nan parse; requireFinite rejects them with the line
   }
 
  private:
@@ -163,6 +189,7 @@ TriangleMesh parseAsciiStl(const std::string& path, const std::string& text) {
       tokens.expect("vertex");
       Eigen::Vector3d p;
       for (int c = 0; c < 3; ++c) p[c] = tokens.number();
+      requireFinite(path, p, "line " + std::to_string(tokens.line()));
       face[v] = merger.index(p);
     }
     const std::string after = tokens.expectAny("'endloop'");
@@ -207,6 +234,7 @@ TriangleMesh parseObj(const std::string& path, const std::string& text) {
           fail(path, "line " + std::to_string(lineNumber) + ": vertex needs three coordinates");
         p[c] = Tokens::parseNumber(path, token, lineNumber);
       }
+      requireFinite(path, p, "line " + std::to_string(lineNumber));
       mesh.vertices.push_back(p);
     } else if (keyword == "f") {
       Face face{{}, lineNumber};
@@ -269,14 +297,16 @@ TriangleMesh readStl(const std::string& path) { return parseStl(path, readWholeF
 
 TriangleMesh readObj(const std::string& path) { return parseObj(path, readWholeFile(path)); }
 
-TriangleMesh readMesh(const std::string& path) {
-  const std::string bytes = readWholeFile(path);
-  const std::string ext = lowerExtension(path);
-  if (ext == "stl") return parseStl(path, bytes);
-  if (ext == "obj") return parseObj(path, bytes);
-  if (looksLikeBinaryStl(bytes)) return parseBinaryStl(path, bytes);
-  if (looksLikeAsciiStl(bytes)) return parseAsciiStl(path, bytes);
-  return parseObj(path, bytes);
+TriangleMesh readMesh(const std::string& path) { return parseMesh(path, readWholeFile(path)); }
+
+TriangleMesh parseMesh(const std::string& name, const std::string& bytes) {
+  if (bytes.empty()) fail(name, "empty mesh file");
+  const std::string ext = lowerExtension(name);
+  if (ext == "stl") return parseStl(name, bytes);
+  if (ext == "obj") return parseObj(name, bytes);
+  if (looksLikeBinaryStl(bytes)) return parseBinaryStl(name, bytes);
+  if (looksLikeAsciiStl(bytes)) return parseAsciiStl(name, bytes);
+  return parseObj(name, bytes);
 }
 
 void writeStlAscii(const TriangleMesh& mesh, const std::string& path,

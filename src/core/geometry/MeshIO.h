@@ -14,11 +14,12 @@
 //     first corner; every other statement (vt, vn, o, g, s, usemtl, mtllib, l, p, comments) is
 //     ignored.
 // Every problem throws MeshError whose message starts with the file name and says what is
-// wrong and where (line number or triangle index): missing/unreadable file, empty file,
-// truncated binary STL, malformed number or keyword, face index out of range, face with fewer
-// than three corners, no triangles at all. Geometry checks (non-finite coordinates, zero-area
-// triangles, open or inconsistently oriented surfaces) are validateMesh()'s job
-// (MeshValidation.h), which throws MeshError as well.
+// wrong and where (line number or triangle index): missing/unreadable file, a directory, empty
+// file, truncated binary STL, malformed number or keyword, non-finite coordinate (inf, nan, or
+// a number beyond the double range), face index out of range, face with fewer than three
+// corners, no triangles at all. Geometry checks (coordinate range, zero-area triangles, open or
+// inconsistently oriented surfaces) are validateMesh()'s job (MeshValidation.h), which throws
+// MeshError as well.
 #pragma once
 
 #include <stdexcept>
@@ -34,6 +35,9 @@ class MeshError : public std::runtime_error {
 };
 
 TriangleMesh readMesh(const std::string& path);
+// readMesh() on bytes already in memory; `name` stands for the path (format from its extension,
+// else sniffed) and starts every error message.
+TriangleMesh parseMesh(const std::string& name, const std::string& bytes);
 TriangleMesh readStl(const std::string& path);  // ASCII or binary, detected from the content
 TriangleMesh readObj(const std::string& path);
 

@@ -1,8 +1,11 @@
 #include "geometry/MeshValidation.h"
 
+#include "geometry/MassProperties.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 #include <unordered_map>
 #include <vector>
 
@@ -69,11 +72,21 @@ MeshValidationReport validateMesh(TriangleMesh& mesh, const std::string& name,
     }
   }
 
-  // 3. zero-area triangles
+  // 2b. the size: areas (L^2) and volumes (L^3) must be representable
   Eigen::AlignedBox3d box;
   for (const auto& f : mesh.triangles)
     for (int v : f) box.extend(mesh.vertices[v]);
+  const double extent = box.diagonal().stableNorm();  // no overflow or underflow on the way
+  if (!(extent <= kMaxMeshExtent) || (extent > 0.0 && extent < kMinMeshExtent)) {
+    std::ostringstream text;
+    text << "bounding-box diagonal " << extent << " is outside [" << kMinMeshExtent << ", "
+         << kMaxMeshExtent << "] (areas, volumes or moments of inertia would overflow or "
+         << "underflow in double)";
+    fail(name, text.str());
+  }
   const double diagonal = box.diagonal().norm();
+
+  // 3. zero-area triangles
   const double minimumArea = options.areaTolerance * diagonal * diagonal;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const double area = 0.5 * mesh.areaVector(t).norm();
@@ -129,6 +142,17 @@ MeshValidationReport validateMesh(TriangleMesh& mesh, const std::string& name,
                      " < 0): triangles must be counter-clockwise seen from outside");
     mesh.flipOrientation();
     report.flippedInwardOrientation = true;
+  }
+
+  // 7. the moments of inertia of a solid: positive, I1 + I2 >= I3 (2 int z^2 dm >= 0)
+  const Eigen::Vector3d moments = computeMassProperties(mesh).principalMomentsPerUnitDensity;
+  const double slack = kInertiaTolerance * moments.cwiseAbs().maxCoeff();
+  if (!moments.allFinite() || !(moments[0] > 0.0) || !(moments[0] + moments[1] >= moments[2] - slack)) {
+    std::ostringstream text;
+    text << "principal moments of inertia per unit density (" << moments[0] << ", " << moments[1]
+         << ", " << moments[2] << ") are not those of a solid (each > 0, the two smaller summing "
+         << "to at least the largest): the surface intersects itself";
+    fail(name, text.str());
   }
   return report;
 }

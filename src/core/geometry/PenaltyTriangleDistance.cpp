@@ -157,39 +157,49 @@ SPACETREE_INLINE_INTO_CLONES void newtonStep(const double rho, const NewtonArray
       r4 = g14[l] * z1 + g24[l] * z2 + g34[l] * z3 + g44[l] * z4 + k4[l] +
            rho * (smaller(z4, 0.0) + larger(excessV, 0.0));
     }
-    // Generalised Hessian: each violated constraint adds rho grad g_i grad g_i^T.
-    const double h11 = g11[l] + (z1 < 0.0 ? rho : 0.0) + pu + kNewtonShift;
-    const double h22 = g22[l] + (z2 < 0.0 ? rho : 0.0) + pu + kNewtonShift;
-    const double h33 = g33[l] + (z3 < 0.0 ? rho : 0.0) + pv + kNewtonShift;
-    const double h44 = g44[l] + (z4 < 0.0 ? rho : 0.0) + pv + kNewtonShift;
-    const double h12 = g12[l] + pu;
-    const double h34 = g34[l] + pv;
+    // Generalised Hessian: each violated constraint adds rho grad g_i grad g_i^T. Per block it
+    // is A + p c c^T, c = (1, 1): A = G + shift + rho for each negative parameter (diagonal),
+    // p = rho when the sum constraint is violated. The rank-one part is kept apart: with p =
+    // 1e12 the entries of A + p c c^T agree in their first 12 digits, and a 2x2 determinant or
+    // adjugate product formed from them cancels to rounding noise (0, hence inf and NaN, or a
+    // wrong finite step, depending on how the compiler contracts the products). The matrix
+    // determinant lemma keeps it out: det(A + p c c^T) = det(A) + p c^T adj(A) c, and
+    // adj(A + p c c^T) = adj(A) + p adj(c c^T), adj(c c^T) = [[1, -1], [-1, 1]].
+    const double a11 = g11[l] + (z1 < 0.0 ? rho : 0.0) + kNewtonShift;
+    const double a22 = g22[l] + (z2 < 0.0 ? rho : 0.0) + kNewtonShift;
+    const double a33 = g33[l] + (z3 < 0.0 ? rho : 0.0) + kNewtonShift;
+    const double a44 = g44[l] + (z4 < 0.0 ? rho : 0.0) + kNewtonShift;
+    const double a12 = g12[l], a34 = g34[l];
+    const double h11 = a11 + pu, h22 = a22 + pu, h12 = a12 + pu;
     const double h13 = g13[l], h14 = g14[l], h23 = g23[l], h24 = g24[l];
     // H dz = r by 2x2 blocks (u, v), written with adjugates so that the step's dependency
     // chain holds one division instead of the four of an LDL^T solve:
-    //   S = det(Huu) Hvv - Huv^T adj(Huu) Huv   (det(Huu) times the Schur complement; the
-    //       quadratic form Huv^T adj(Huu) Huv from the constant products c of Huv),
+    //   S = det(Huu) Hvv - Huv^T adj(Huu) Huv = M + det(Huu) pv c c^T   (det(Huu) times the
+    //       Schur complement; the quadratic form Huv^T adj(Huu) Huv from the constant products
+    //       c.. of Huv),
     //   dz_v = adj(S) (det(Huu) r_v - Huv^T adj(Huu) r_u) / det(S),
     //   dz_u = adj(Huu) (r_u - Huv dz_v) / det(Huu).
-    const double detUU = h11 * h22 - h12 * h12;
-    const double s33 = detUU * h33 - (h22 * c11[l] + h12 * c12[l] + h11 * c13[l]);
-    const double s34 = detUU * h34 - (h22 * c21[l] + h12 * c22[l] + h11 * c23[l]);
-    const double s44 = detUU * h44 - (h22 * c31[l] + h12 * c32[l] + h11 * c33[l]);
-    const double ar1 = h22 * r1 - h12 * r2, ar2 = h11 * r2 - h12 * r1;
+    const double detUU = (a11 * a22 - a12 * a12) + pu * (a11 + a22 - 2.0 * a12);
+    const double m33 = detUU * a33 - (h22 * c11[l] + h12 * c12[l] + h11 * c13[l]);
+    const double m34 = detUU * a34 - (h22 * c21[l] + h12 * c22[l] + h11 * c23[l]);
+    const double m44 = detUU * a44 - (h22 * c31[l] + h12 * c32[l] + h11 * c33[l]);
+    const double alpha = detUU * pv;
+    const double ar1 = (a22 * r1 - a12 * r2) + pu * (r1 - r2);
+    const double ar2 = (a11 * r2 - a12 * r1) + pu * (r2 - r1);
     const double rs3 = detUU * r3 - (h13 * ar1 + h23 * ar2);
     const double rs4 = detUU * r4 - (h14 * ar1 + h24 * ar2);
     // One division for both determinants (a division costs as much as a dozen FMAs and
     // sits on the step's dependency chain); the product stays far inside double range
     // (entries are O(rho) <= 1e12 in edge-length units: |detUU * detS| < 1e100).
-    const double detS = s33 * s44 - s34 * s34;
+    const double detS = (m33 * m44 - m34 * m34) + alpha * (m33 + m44 - 2.0 * m34);
     const double inverseProduct = 1.0 / (detUU * detS);
     const double inverseDetS = detUU * inverseProduct;
     const double inverseDetUU = detS * inverseProduct;
-    const double dz3 = (s44 * rs3 - s34 * rs4) * inverseDetS;
-    const double dz4 = (s33 * rs4 - s34 * rs3) * inverseDetS;
+    const double dz3 = ((m44 * rs3 - m34 * rs4) + alpha * (rs3 - rs4)) * inverseDetS;
+    const double dz4 = ((m33 * rs4 - m34 * rs3) + alpha * (rs4 - rs3)) * inverseDetS;
     const double t1 = r1 - h13 * dz3 - h14 * dz4, t2 = r2 - h23 * dz3 - h24 * dz4;
-    const double dz1 = (h22 * t1 - h12 * t2) * inverseDetUU;
-    const double dz2 = (h11 * t2 - h12 * t1) * inverseDetUU;
+    const double dz1 = ((a22 * t1 - a12 * t2) + pu * (t1 - t2)) * inverseDetUU;
+    const double dz2 = ((a11 * t2 - a12 * t1) + pu * (t2 - t1)) * inverseDetUU;
     if constexpr (direct) {
       u1[l] = dz1;
       u2[l] = dz2;
