@@ -12,11 +12,20 @@ TEST is one of:
                  grains touch the floor (contacts, halo penetration below eps at every thermo
                  row), end on it (lowest centre above the floor's top and within a grain
                  diameter of it) and lose kinetic energy to the contact damping.
+  first_deck     in.first_deck (docs/first_triangulated_deck.md: STL and dented templates,
+                 materials from fix property/global, tangential history, fix wall/gran floor
+                 and cylinder by surface, insertion by particletemplate/trimesh, fix
+                 adapt/timestep, dump trimesh/vtk and dump custom quat1..4), 40 000 steps: 40
+                 grains inserted and none lost, halo penetration below eps at every row, the
+                 step above dtcontact during the fall, at the end every grain inside the
+                 container (centre above the floor, within the cylinder), at rest (kinetic
+                 energy below 1e-3 of its peak) with unit quaternions.
 
 Runs come from ../common.  Exit status 0 = pass, 1 = fail, 2 = usage / setup problem.
 """
 
 import glob
+import math
 import os
 import re
 import shutil
@@ -83,13 +92,67 @@ def test_trimesh_drop(R):
     print("  PASS")
 
 
+def read_pose_dump(path):
+    """Rows of a dump custom file as dicts of floats, keyed by the ITEM: ATOMS column names."""
+    lines = C.read_text(path).split("\n")
+    k = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
+    names = lines[k].split()[2:]
+    return [dict(zip(names, map(float, line.split()))) for line in lines[k + 1:] if line.strip()]
+
+
+def test_first_deck(R):
+    for f in os.listdir(EXAMPLES):
+        shutil.copy(os.path.join(EXAMPLES, f), R.work)
+    n, dtcontact, eps, radius = 40000, 6e-6, 5e-5, 0.03
+    _, text = R.run(os.path.join(R.work, "in.first_deck"), "first", 1, {"n": n})
+    cols, rows = C.parse_thermo(text)
+    col = {c: [r[j] for r in rows] for j, c in enumerate(cols)}
+    steps = [int(s) for s in col["Step"]]
+    if steps[-1] != n:
+        raise C.Fail("the run stopped at step %d, not %d" % (steps[-1], n))
+    atoms = [int(a) for s, a in zip(steps, col["Atoms"]) if s > 0]
+    if set(atoms) != {40}:
+        raise C.Fail("atoms after the insertion step: %s, expected 40 throughout" % sorted(set(atoms)))
+    pen, ke, time = col["penetrat"], col["integr"], col["Time"]
+    print("  largest penetration %.3f eps, kinetic energy %.3g J at the end (peak %.3g J), "
+          "simulated time %.4f s (%.4f s at step %d)" % (max(pen), ke[-1], max(ke), time[-1], time[1], steps[1]))
+    if not max(pen) < 1.0:
+        raise C.Fail("halo penetration %.3f eps: the rigid surfaces touched" % max(pen))
+    if not time[1] > 1.5 * steps[1] * dtcontact:
+        raise C.Fail("%.4f s in the first %d steps: the adaptive step never rose above dtcontact %g"
+                     % (time[1], steps[1], dtcontact))
+    if not ke[-1] < 1e-3 * max(ke):
+        raise C.Fail("kinetic energy %.3g J at the end, peak %.3g J: the grains are not at rest" % (ke[-1], max(ke)))
+    poses = read_pose_dump(os.path.join(R.work, "poses_%d.txt" % n))
+    if len(poses) != 40:
+        raise C.Fail("poses_%d.txt has %d grains, expected 40" % (n, len(poses)))
+    zmin = min(p["z"] for p in poses)
+    rmax = max(math.hypot(p["x"], p["y"]) for p in poses)
+    qerr = max(abs(sum(p["quat%d" % i] ** 2 for i in range(1, 5)) - 1.0) for p in poses)
+    print("  at the end: lowest centre %.5f m, largest distance from the axis %.5f m, |q|^2 - 1 up to %.1e"
+          % (zmin, rmax, qerr))
+    if not zmin > 0.0 or not rmax < radius:
+        raise C.Fail("a grain centre left the container (floor z = 0, cylinder radius %g m)" % radius)
+    # an L prism lying on a face rests with its centre half its 3 mm depth (+ the halo) above the
+    # floor; a wall pushing bounding spheres would hold every centre >= 4 mm up
+    if not zmin < 0.0017:
+        raise C.Fail("lowest grain centre %.5f m: no grain rests on the floor by its surface" % zmin)
+    if not qerr < 1e-4:   # the dump prints 6 digits
+        raise C.Fail("dump custom quat1..4 are not unit quaternions (|q|^2 - 1 = %.1e)" % qerr)
+    if not glob.glob(os.path.join(R.work, "first_%d.vtk" % n)):
+        raise C.Fail("dump trimesh/vtk wrote no first_%d.vtk" % n)
+    print("  PASS")
+
+
 def dispatch(R, parts):
     if parts == ["trimesh_drop"]:
         test_trimesh_drop(R)
+    elif parts == ["first_deck"]:
+        test_first_deck(R)
     else:
         return False
     return True
 
 
 if __name__ == "__main__":
-    sys.exit(C.driver_main(__doc__, dispatch, lambda: ["trimesh_drop"]))
+    sys.exit(C.driver_main(__doc__, dispatch, lambda: ["trimesh_drop", "first_deck"]))
