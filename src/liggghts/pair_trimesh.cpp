@@ -1,5 +1,9 @@
 /* spacetree-dem: pair style for triangulated rigid particles (thin layer over the core's
-   MeshContactFinder and ContactModel). */
+   MeshContactFinder and ContactModel).
+   Slightly over 600 lines because settings() carries the style's whole keyword grammar (sub-model
+   slots, coefficients, method, threads: ~150 lines of checks, each naming its keyword) beside
+   compute(); the contact law, materials, walls, history and deck checks live in their own files
+   (trimesh_contact_coefficients, trimesh_wall_contacts, fix_trimesh_contact_history, ...). */
 
 #include "pair_trimesh.h"
 
