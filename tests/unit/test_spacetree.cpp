@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "sphere_cloud.h"
 #include "tree/Spacetree.h"
 
 using spacetree::Spacetree;
@@ -16,16 +17,7 @@ using spacetree::SpacetreeOptions;
 
 namespace {
 
-struct Particles {
-  std::vector<std::array<double, 3>> x;
-  std::vector<double> r;
-  void add(double px, double py, double pz, double pr) {
-    x.push_back({px, py, pz});
-    r.push_back(pr);
-  }
-  int size() const { return int(r.size()); }
-  const double (*positions() const)[3] { return reinterpret_cast<const double(*)[3]>(x.data()); }
-};
+using Particles = spacetree::testing::SphereCloud;
 
 using PairSet = std::set<std::pair<int, int>>;
 

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "sphere_cloud.h"
 #include "tree/Spacetree.h"
 
 using spacetree::Spacetree;
@@ -19,21 +20,7 @@ using spacetree::SpacetreeOptions;
 
 namespace {
 
-struct Cloud {
-  std::vector<std::array<double, 3>> x;
-  std::vector<double> r;
-  void add(double px, double py, double pz, double pr) {
-    x.push_back({px, py, pz});
-    r.push_back(pr);
-  }
-  int size() const { return int(r.size()); }
-  const double (*positions() const)[3] { return reinterpret_cast<const double(*)[3]>(x.data()); }
-  double distanceSquared(int i, int j) const {
-    double d2 = 0.0;
-    for (int d = 0; d < 3; ++d) d2 += (x[i][d] - x[j][d]) * (x[i][d] - x[j][d]);
-    return d2;
-  }
-};
+using Cloud = spacetree::testing::SphereCloud;
 
 using PairSet = std::set<std::pair<int, int>>;
 
