@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "atom.h"
@@ -224,9 +225,15 @@ void FixAdaptTimestep::init()
                    "skin/2-per-step cap does not keep the neighbour lists valid");
   if (rollback_on) {
     for (int i = 0; i < modify->nfix; i++)
-      if (modify->fix[i]->time_depend && modify->fix[i] != this)
-        error->all(FLERR,"Fix adapt/timestep rollback cannot be combined with another fix that "
-                   "changes the time step");
+      if (modify->fix[i]->time_depend && modify->fix[i] != this) {
+        // such fixes (fix move/trimesh, fix dt/reset, ...) keep their own clock, which a
+        // rolled-back step would not rewind
+        char msg[512];
+        snprintf(msg,sizeof(msg),"Fix adapt/timestep rollback cannot be combined with fix %s (%s): "
+                 "it depends on the elapsed time, which a rolled-back step does not rewind for it",
+                 modify->fix[i]->id,modify->fix[i]->style);
+        error->all(FLERR,msg);
+      }
     collect_state_sources();
   }
 }
