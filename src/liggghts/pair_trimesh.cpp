@@ -149,8 +149,10 @@ void PairTrimesh::settings(int narg, char **arg)
   };
   // a coefficient: a finite number > 0 (or >= 0)
   const auto coefficient = [&](const char *kw, const char *val, bool positive) {
-    const double v = force->numeric(FLERR,val);
-    if (!std::isfinite(v) || v < 0.0 || (positive && v == 0.0)) {
+    // parsed here (not by force->numeric) so that 'nan', 'inf' and words name their keyword
+    char *end = NULL;
+    const double v = strtod(val,&end);
+    if (end == val || *end != '\0' || !std::isfinite(v) || v < 0.0 || (positive && v == 0.0)) {
       std::string msg = std::string("Illegal pair_style trimesh command: ") + kw + " '" + val +
                         "' must be a finite number " + (positive ? "> 0" : ">= 0");
       error->all(FLERR,msg.c_str());
