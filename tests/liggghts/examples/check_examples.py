@@ -92,12 +92,8 @@ def test_trimesh_drop(R):
     print("  PASS")
 
 
-def read_pose_dump(path):
-    """Rows of a dump custom file as dicts of floats, keyed by the ITEM: ATOMS column names."""
-    lines = C.read_text(path).split("\n")
-    k = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS"))
-    names = lines[k].split()[2:]
-    return [dict(zip(names, map(float, line.split()))) for line in lines[k + 1:] if line.strip()]
+# columns of in.first_deck's dump custom poses_*.txt
+POSE_COLUMNS = ("id", "type", "x", "y", "z", "vx", "vy", "vz", "quat1", "quat2", "quat3", "quat4")
 
 
 def test_first_deck(R):
@@ -123,7 +119,8 @@ def test_first_deck(R):
                      % (time[1], steps[1], dtcontact))
     if not ke[-1] < 1e-3 * max(ke):
         raise C.Fail("kinetic energy %.3g J at the end, peak %.3g J: the grains are not at rest" % (ke[-1], max(ke)))
-    poses = read_pose_dump(os.path.join(R.work, "poses_%d.txt" % n))
+    (_, rows), = C.parse_dump_rows(os.path.join(R.work, "poses_%d.txt" % n))
+    poses = [dict(zip(POSE_COLUMNS, row)) for row in rows.values()]
     if len(poses) != 40:
         raise C.Fail("poses_%d.txt has %d grains, expected 40" % (n, len(poses)))
     zmin = min(p["z"] for p in poses)
