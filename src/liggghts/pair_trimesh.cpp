@@ -224,6 +224,7 @@ void PairTrimesh::settings(int narg, char **arg)
   }
   if (!have_eps) error->all(FLERR,"Illegal pair_style trimesh command: eps is required");
   cs.eps = model->contact.epsilon;
+  cs.rotation = model->rotation;
   // `friction MU GAMMA` alone: the viscous model of eq. (1) (none unless both are > 0)
   if (!have_tangential && !std::isnan(cs.friction) && !std::isnan(cs.sliding_damping) &&
       cs.friction > 0.0 && cs.sliding_damping > 0.0)

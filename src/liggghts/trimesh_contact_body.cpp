@@ -24,6 +24,7 @@ dy::RigidBody LAMMPS_NS::trimesh_contact_body(const TrimeshTypeTemplate *tt,
   dy::RigidBody b = dy::RigidBody::free(rmass,inertia,pose.position,pose.orientation);
   b.velocity = velocity;
   if (rotation) b.setAngularVelocity(w);
+  else b.inverseInertia.setZero();   // rotation no: the contact point's mass is the body's
   return b;
 }
 

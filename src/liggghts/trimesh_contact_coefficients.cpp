@@ -136,9 +136,9 @@ cm::ContactParameters TrimeshContactCoefficients::parameters(int i, int j,
       kt = stiffness * (have_poisson ? cm::mindlinStiffnessRatio(youngs_i,poisson_i,youngs_j,poisson_j)
                                      : kDefaultTangentialRatio);
     p.set("tangentialStiffness",kt);
-    // the tangential dashpot has the normal damping ratio: D_t = zeta sqrt(k_t)
-    const double zeta = spec.damping != "none" ? p.values().at("damping") * std::sqrt(2.0 / stiffness) : 0.0;
-    p.set("tangentialDamping",zeta * std::sqrt(kt));
+    // the tangential dashpot gives the tangential oscillation the normal restitution
+    p.set("tangentialDamping",spec.damping != "none"
+          ? cm::tangentialDampingFor(stiffness,p.values().at("damping"),kt) : 0.0);
   }
   if (spec.cohesion != "none") {
     const double ced = per_pair("cohesionEnergyDensity",i,j,"cohesion sjkr");
@@ -188,14 +188,17 @@ void TrimeshContactCoefficients::report(const cm::ContactModelTable &table,
         continue;
       }
       const double inv_m = (ti->fixed ? 0.0 : 1.0 / ti->mass) + (tj->fixed ? 0.0 : 1.0 / tj->mass);
-      // tangential: translation plus rotation about the smallest moment, lever = bounding radius
-      const auto inv_t = [](const TrimeshTypeTemplate *t) {
-        return t->fixed ? 0.0 : 1.0 / t->mass + t->boundingRadius * t->boundingRadius / t->inertia.minCoeff();
+      // the lightest contact point: translation plus rotation about the smallest moment, lever =
+      // bounding radius (rotation no: translation only)
+      const auto inv_point = [&s](const TrimeshTypeTemplate *t) {
+        if (t->fixed) return 0.0;
+        return 1.0 / t->mass + (s.rotation ? t->boundingRadius * t->boundingRadius / t->inertia.minCoeff() : 0.0);
       };
       const double S = m.normal().stiffness();
       const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
       const double kt = m.tangential() ? m.tangential()->stiffness() : 0.0;
-      const cm::ContactTiming t = cm::contactTiming(S,D,1.0 / inv_m,kt,1.0 / (inv_t(ti) + inv_t(tj)));
+      const double Dt = m.tangential() ? m.tangential()->damping() : 0.0;
+      const cm::ContactTiming t = cm::contactTiming(S,D,1.0 / inv_m,kt,Dt,1.0 / (inv_point(ti) + inv_point(tj)));
       smallest = std::min(smallest,t.stableStep);
       if (m.cohesion() && m.cohesion()->pullOffForce() > S * s.eps) {
         char msg[300];

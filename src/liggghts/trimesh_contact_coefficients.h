@@ -27,6 +27,7 @@ struct TrimeshContactSettings {
   double friction = std::numeric_limits<double>::quiet_NaN();              // -
   double sliding_damping = std::numeric_limits<double>::quiet_NaN();       // N s/m
   double tangential_stiffness = std::numeric_limits<double>::quiet_NaN();  // N/m
+  bool rotation = true;   // pair_style keyword rotation (the stable step's contact point masses)
 };
 
 class TrimeshContactCoefficients : protected Pointers {

@@ -5,6 +5,7 @@
 // direct integration of the one-contact equation of motion.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -259,13 +260,15 @@ TEST(ContactModel, TangentialSpringIsRotatedIntoTheNewTangentPlaneKeepingItsLeng
 }
 
 TEST(ContactModel, TangentialDashpotDampsTheSpringAndStaysWithinTheCap) {
-  // one contact point, m_eff = 1 kg: xi'' = -k_t xi - 2 D_t v; damping ratio D_t / sqrt(k_t)
+  // one contact point of tangential mass m_t = 1 kg: xi'' = -k_t xi - 2 D_t v; damping ratio
+  // D_t / sqrt(k_t)
   const double kt = 1e4, zeta = 0.2;
   const ContactModel model(historySpec(), historyParameters(100.0, kt, zeta * std::sqrt(kt)));
   Contact k;
   k.normal = Vector3d::UnitZ();
   k.penetration = 1.0;
   k.effectiveMass = 1.0;
+  k.tangentialMass = 1.0;
   double xi[3] = {0, 0, 0};
   double x = 0.0, v = 1.0, peak1 = 0.0, peak2 = 0.0;
   const double dt = 1e-5;
@@ -419,7 +422,7 @@ TEST(MaterialMapping, HertzEffectiveQuantitiesAndTheHaloStiffness) {
 TEST(MaterialMapping, ContactTimeMatchesADirectIntegration) {
   for (double zeta : {0.0, 0.3, 0.9, 1.0, 1.4}) {
     const double spring = 4e5, mass = 0.02, damping = zeta * std::sqrt(spring / 2);
-    const ContactTiming t = contactTiming(spring, damping, mass, 0.0, 0.0);
+    const ContactTiming t = contactTiming(spring, damping, mass, 0.0, 0.0, mass);
     // m x'' = -(S/2) x - 2 D sqrt(m) x' (approach), -(S/2) x (release), from x = 0, x' = 1
     const double dt = 1e-5 / t.normalFrequency;
     double x = 0.0, v = 1.0, time = 0.0;
@@ -430,9 +433,54 @@ TEST(MaterialMapping, ContactTimeMatchesADirectIntegration) {
       time += dt;
     } while (x > 0.0);
     EXPECT_NEAR(time / t.contactTime, 1.0, 1e-4) << zeta;
-    EXPECT_NEAR(t.stableStep, 2.0 / t.normalFrequency, 1e-18);
+    EXPECT_NEAR(t.stableStep, dampedStableStep(t.normalFrequency, zeta), 1e-18);
   }
-  const ContactTiming withSpring = contactTiming(4e5, 0.0, 0.02, 3e5, 0.005);
+  // the stable step on the lightest contact point, the tangential spring's if faster
+  const ContactTiming withSpring = contactTiming(4e5, 0.0, 0.02, 3e5, 0.0, 0.005);
   EXPECT_NEAR(withSpring.stableStep, 2.0 / std::sqrt(3e5 / 0.005), 1e-15);
+  const ContactTiming lighter = contactTiming(4e5, 0.0, 0.02, 0.0, 0.0, 0.005);
+  EXPECT_NEAR(lighter.stableStep, 2.0 / std::sqrt(4e5 / (2 * 0.005)), 1e-15);
+  EXPECT_NEAR(lighter.normalFrequency, std::sqrt(4e5 / (2 * 0.02)), 1e-9);  // contact time: m_eff
+}
+
+// m x'' = -k x - c x' integrated as LIGGGHTS' nve integrators (half kick, drift, force from the
+// half-step velocity, half kick) for `steps` steps from x = 1: the largest |x| of the last
+// hundred steps.
+double leapfrogAmplitude(double omega, double zeta, double dt, int steps) {
+  const double k = omega * omega, c = 2 * zeta * omega;  // unit mass
+  double x = 1.0, v = 0.0, a = -k * x, late = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    v += 0.5 * dt * a;
+    x += dt * v;
+    a = -k * x - c * v;
+    v += 0.5 * dt * a;
+    if (!std::isfinite(x)) return std::numeric_limits<double>::infinity();
+    if (s >= steps - 100) late = std::max(late, std::abs(x));
+  }
+  return late;
+}
+
+TEST(MaterialMapping, DampedStableStepIsTheIntegratorsLimit) {
+  // below the limit the oscillation decays, above it grows: the dashpot lowers the limit
+  // 2 / omega of the undamped spring to 2 (sqrt(1 + zeta^2) - zeta) / omega
+  for (double zeta : {0.0, 0.358, 1.336}) {
+    const double omega = 1000.0, limit = dampedStableStep(omega, zeta);
+    EXPECT_LT(leapfrogAmplitude(omega, zeta, 0.98 * limit, 4000), 1.0) << zeta;
+    EXPECT_GT(leapfrogAmplitude(omega, zeta, 1.02 * limit, 4000), 1.0) << zeta;
+  }
+  EXPECT_NEAR(dampedStableStep(1000.0, 1.336) * 1000.0, 2 * (std::sqrt(1 + 1.336 * 1.336) - 1.336), 1e-15);
+}
+
+TEST(MaterialMapping, TangentialDashpotGivesTheNormalRestitution) {
+  // the tangential dashpot acts throughout: a free tangential oscillation loses the factor e
+  // of its amplitude per half period, as the normal approach dashpot gives a collision e
+  const double S = 500.0, kt = 400.0;
+  for (double e : {0.3, 0.7, 0.95}) {
+    const double D = dampingForRestitution(S, e), Dt = tangentialDampingFor(S, D, kt);
+    const double zetaT = Dt / std::sqrt(kt);
+    EXPECT_NEAR(std::exp(-M_PI * zetaT / std::sqrt(1 - zetaT * zetaT)), e, 1e-12) << e;
+    EXPECT_LT(zetaT, D * std::sqrt(2.0 / S)) << e;  // weaker than the approach-only ratio
+  }
+  EXPECT_EQ(tangentialDampingFor(S, 0.0, kt), 0.0);
 }
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -239,6 +240,44 @@ TEST(MeshContact, OnlyLocalMinimaOfTheSurfaceDistanceCount) {
   double largestTilt = 0.0;
   for (const ContactPoint& c : all) largestTilt = std::max(largestTilt, std::hypot(c.normal.x(), c.normal.y()));
   EXPECT_GT(largestTilt, 1e-3);
+}
+
+// A rail (a long square bar turned by 45 degrees about its axis: a ridge below) lying across a
+// plate with a square top face and sides sloping down by 22 degrees (as a dented grain's faces
+// meet): the ridge touches the top face along a segment that ends at the top face's border
+// creases, x = -0.5 and 0.5, where neither body has a vertex. Whichever way the rail is tilted,
+// it is held at both ends along the face normal (step 4b'). The triangle kernel gives one point
+// per triangle pair, the lower end, and the other end's pairs (the rail's faces with the plate's
+// sloping side) are not local minima under the tilt: held at one end, the rail tilted the other
+// way and was then held at the other end only.
+TEST(MeshContact, RidgeAcrossAFaceIsHeldAtBothEndsOfTheSegment) {
+  const RigidShape rail = RigidShape::fromMesh(geometry::boxMesh(Vector3d(3.0, 0.2, 0.2)));
+  geometry::TriangleMesh frustum = geometry::boxMesh(Vector3d(1.0, 1.0, 0.2));
+  for (Vector3d& v : frustum.vertices)
+    if (v.z() < 0.0) v.head<2>() *= 2.0;  // bottom 2 x 2, top 1 x 1
+  const RigidShape plate = RigidShape::fromMesh(frustum);
+  double top = -1e9, x0 = 0.0;
+  for (const Vector3d& v : plate.bodyMesh.vertices) top = std::max(top, v.z());
+  for (const Vector3d& v : plate.bodyMesh.vertices)
+    if (v.z() == top) x0 += 0.25 * v.x();  // the top face's centre (its edges are 1 long)
+  const Pose platePose{Vector3d::Zero(), Quaterniond::Identity()};
+  const double gap = kEps;
+  for (double tilt : {1e-5, -1e-5, 0.0}) {
+    const Quaterniond q = Quaterniond(Eigen::AngleAxisd(tilt, Vector3d::UnitY())) *
+                          Quaterniond(Eigen::AngleAxisd(M_PI / 4, Vector3d::UnitX()));
+    const Pose railPose{Vector3d(x0, 0.13, top + 0.1 * std::sqrt(2.0) + gap), q};
+    std::vector<ContactPoint> contacts;
+    MeshContactFinder(optionsFor(TriangleDistanceMethod::Hybrid)).find(rail, railPose, plate, platePose, contacts);
+    int ends[2] = {0, 0};
+    for (const ContactPoint& c : contacts) {
+      EXPECT_LT((c.normal + Vector3d::UnitZ()).norm(), 1e-4) << tilt;  // rail -> plate: down
+      EXPECT_NEAR(c.penetration, kEps - gap / 2, 1e-5) << tilt;
+      for (int e = 0; e < 2; ++e)
+        if (std::abs(c.point.x() - x0 - (e ? 0.5 : -0.5)) < 1e-4 && std::abs(c.point.y() - 0.13) < 1e-4) ++ends[e];
+    }
+    EXPECT_EQ(ends[0], 1) << "tilt " << tilt;
+    EXPECT_EQ(ends[1], 1) << "tilt " << tilt;
+  }
 }
 
 TEST(MeshContact, MethodNamesParse) {

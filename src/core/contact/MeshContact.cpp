@@ -402,6 +402,7 @@ void MeshContactFinder::collectRawContacts(const geometry::RigidShape& first,
     const geometry::TriangleDistanceResult& r = results_[p];
     if (!(r.distance < frame.contactDistance)) continue;
     addVertexContacts(p);
+    addEdgeCrossingContacts(first, second, p);
     ContactPoint c;
     c.point = 0.5 * (r.pointOnFirst + r.pointOnSecond);
     c.distance = r.distance;
@@ -439,6 +440,103 @@ void MeshContactFinder::mergeDuplicates(const geometry::RigidShape& first,
   // half the shortest edge: the vertex contacts of a face resting on a face (4b) stay apart
   merger_.merge(raw_, 0.5 * std::min(first.minimumEdgeLength, second.minimumEdgeLength), options_,
                 contacts);
+}
+
+namespace {
+
+// Sine of the angle up to which an edge counts as lying on a face (4b'): resting contacts tilt
+// an edge by up to ~eps / edge length; the creases of a 40-triangle grain turn by ~30 degrees.
+constexpr double kLyingSlope = 0.0872;  // sin 5 degrees
+
+enum class Crease { Flat, Convex, Concave };
+
+// How the surface bends across edge k of triangle t (body frame, frame-independent): convex
+// when the neighbour's apex lies below the triangle's plane (inside the body) by more than
+// kFeatureTolerance of its distance, concave when above, flat otherwise (e.g. a box face's
+// diagonal). An edge without a neighbour (an open surface's border) ends the surface: convex.
+Crease creaseOf(const geometry::RigidShape& shape, int t, int k) {
+  const int apex = shape.edgeApex[std::size_t(t)][std::size_t(k)];
+  if (apex < 0) return Crease::Convex;
+  const Triangle& tri = shape.bodyTriangles[std::size_t(t)];
+  const Vector3d n = outwardUnitNormal(tri);
+  const Vector3d step = shape.bodyMesh.vertices[std::size_t(apex)] - tri[k];
+  const double rise = n.dot(step);
+  if (rise < -kFeatureTolerance * step.norm()) return Crease::Convex;
+  if (rise > kFeatureTolerance * step.norm()) return Crease::Concave;
+  return Crease::Flat;
+}
+
+}  // namespace
+
+// Step (4b'): the ends of an edge's part over the other triangle's face. A convex edge of one
+// body (a ridge) lying on the other's face touches along a segment; where the segment leaves
+// the face over a crease of the face's border, the contact region has a corner that is neither
+// body's vertex, so (4b) misses it, and the kernel gives one point per triangle pair: the
+// lower end, which under a tilt of 1e-7 jumps to the other end and back. A grain resting on
+// such a ridge was held at one end at a time and rocked without end (a pile of dented grains
+// kept ~1e-8 of its peak kinetic energy, bench/resting_energy.cpp). With both ends it rests.
+// Each end within the contact distance of the face's plane is a contact along the face normal,
+// like a vertex contact; the kernel's own point at an end is merged with it (6). Flat edges (a
+// face's diagonal) bound no region: they give none. Nor does an end where the edge, leaving the
+// face, comes down towards the face's plane by more than kLyingSlope: the edge is then tilted
+// onto that end and comes closest to the border crease beyond it (the kernel's contact), or the
+// face is a slope next to the face the edge lies on (its end would push sideways).
+void MeshContactFinder::addEdgeCrossingContacts(const geometry::RigidShape& first,
+                                                const geometry::RigidShape& second, std::size_t p) {
+  const double eps = options_.epsilon, contactDistance = 2.0 * eps;
+  const int triangle[2] = {pairIndex_[p][0], nearSecond_[std::size_t(pairIndex_[p][1])]};
+  const geometry::RigidShape* shape[2] = {&first, &second};
+  const Triangle* tri[2] = {&pairFirst_[p], &pairSecond_[p]};
+  for (int side = 0; side < 2; ++side) {
+    const Triangle& edges = *tri[side];
+    const Triangle& face = *tri[1 - side];
+    const Vector3d faceNormal = outwardUnitNormal(face);
+    if (!(faceNormal.squaredNorm() > 0.0)) continue;
+    for (int k = 0; k < 3; ++k) {
+      if (creaseOf(*shape[side], triangle[side], k) != Crease::Convex) continue;
+      // the edge a + t (b - a), t in [0, 1], clipped to the prism over the face: inside(t) >= 0
+      // for each border line of the face
+      const Vector3d& a = edges[k];
+      const Vector3d d = edges[(k + 1) % 3] - a;
+      double low = 0.0, high = 1.0;
+      int lowBorder = -1, highBorder = -1;
+      for (int m = 0; m < 3 && low <= high; ++m) {
+        const Vector3d border = face[(m + 1) % 3] - face[m];
+        const Vector3d inward = faceNormal.cross(border);
+        const double at = inward.dot(a - face[m]), slope = inward.dot(d);
+        if (slope == 0.0) {
+          if (at < 0.0) low = 2.0;  // parallel and outside
+          continue;
+        }
+        const double t = -at / slope;
+        if (slope > 0.0 && t > low) low = t, lowBorder = m;
+        if (slope < 0.0 && t < high) high = t, highBorder = m;
+      }
+      if (!(low <= high)) continue;
+      const double ends[2] = {low, high};
+      const int borders[2] = {lowBorder, highBorder};
+      for (int e = 0; e < 2; ++e) {
+        if (borders[e] < 0) continue;  // an end of the edge itself: a vertex contact (4b)
+        if (creaseOf(*shape[1 - side], triangle[1 - side], borders[e]) == Crease::Flat) continue;
+        // leaving the prism (t decreasing at the low end) the edge must not come down towards
+        // the face's plane: else it comes closer to the border crease beyond, and that closest
+        // approach, not this point, is the contact (the kernel's)
+        const double leaving = (e == 0 ? -1.0 : 1.0) * faceNormal.dot(d) / d.norm();
+        if (leaving < -kLyingSlope) continue;
+        const Vector3d x = a + ends[e] * d;
+        const double h = faceNormal.dot(x - face[0]);
+        if (!(h >= 0.0 && h < contactDistance)) continue;
+        ContactPoint c;
+        c.point = x - 0.5 * h * faceNormal;
+        c.normal = side == 0 ? Vector3d(-faceNormal) : faceNormal;
+        c.distance = h;
+        c.penetration = eps - 0.5 * h;
+        c.firstTriangle = triangle[0];
+        c.secondTriangle = triangle[1];
+        raw_.push_back(c);
+      }
+    }
+  }
 }
 
 // Step (4b): the vertices of either triangle of a pair in contact that lie over the other's face

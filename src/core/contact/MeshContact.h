@@ -224,6 +224,9 @@ class MeshContactFinder {
                           const PairFrame& frame, MeshContactStatistics& counts);
   // (4b) for pair p: its vertex contacts -> raw_.
   void addVertexContacts(std::size_t pair);
+  // (4b') for pair p: the ends of a convex edge's part over the other's face -> raw_.
+  void addEdgeCrossingContacts(const geometry::RigidShape& first,
+                               const geometry::RigidShape& second, std::size_t pair);
   // (6): raw_ merged into the contacts it appends to `contacts` (ContactMerger).
   void mergeDuplicates(const geometry::RigidShape& first, const geometry::RigidShape& second,
                        std::vector<ContactPoint>& contacts);

@@ -2,6 +2,14 @@
 
 namespace spacetree::contact_model {
 
+double inverseMassAt(const dynamics::RigidBody& body, const Eigen::Vector3d& point,
+                     const Eigen::Vector3d& direction) {
+  if (body.inverseInertia.squaredNorm() == 0.0) return body.inverseMass;
+  // (r x u) . R diag(1/I) R^T (r x u), in the body frame
+  const Eigen::Vector3d arm = body.orientation.conjugate() * (point - body.position).cross(direction);
+  return body.inverseMass + arm.dot(body.inverseInertia.cwiseProduct(arm));
+}
+
 Contact makeContact(const dynamics::RigidBody& first, const dynamics::RigidBody& second,
                     const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double penetration) {
   Contact c;
@@ -10,8 +18,16 @@ Contact makeContact(const dynamics::RigidBody& first, const dynamics::RigidBody&
   c.penetration = penetration;
   c.relativeVelocity = second.velocityAt(point) - first.velocityAt(point);
   c.normalVelocity = c.relativeVelocity.dot(normal);
-  const double inverseMasses = first.inverseMass + second.inverseMass;
-  c.effectiveMass = inverseMasses > 0.0 ? 1.0 / inverseMasses : 0.0;
+  const Eigen::Vector3d sliding = c.relativeVelocity - c.normalVelocity * normal;
+  const double slidingNorm = sliding.norm();
+  const double inverseNormal = inverseMassAt(first, point, normal) + inverseMassAt(second, point, normal);
+  c.effectiveMass = inverseNormal > 0.0 ? 1.0 / inverseNormal : 0.0;
+  c.tangentialMass = c.effectiveMass;
+  if (slidingNorm > 0.0) {
+    const Eigen::Vector3d t = sliding / slidingNorm;
+    const double inverseTangential = inverseMassAt(first, point, t) + inverseMassAt(second, point, t);
+    c.tangentialMass = inverseTangential > 0.0 ? 1.0 / inverseTangential : 0.0;
+  }
   return c;
 }
 

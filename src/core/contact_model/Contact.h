@@ -6,8 +6,21 @@
 // normal points from i towards j; `penetration` is the halo overlap per side, eps - d/2 > 0 for a
 // contact (d: surface distance; eps: halo depth); relativeVelocity = v_j - v_i of the two bodies'
 // material points at the contact point (rotation included), normalVelocity = its component along
-// the normal (< 0 while the bodies approach); effectiveMass = 1 / (1/m_i + 1/m_j), the mass of
-// the other body for a fixed obstacle (inverse mass 0), 0 when both are fixed.
+// the normal (< 0 while the bodies approach).
+//
+// Masses of the contact point (what a force at the point along a direction accelerates, the
+// bodies' rotation included): 1/m = sum over the two bodies of 1/m_b + (r_b x u) . I_b^-1
+// (r_b x u), r_b the lever arm from body b's centre of mass to the point, u the direction; a
+// fixed obstacle contributes 0, a body without rotation (inverseInertia 0) only 1/m_b.
+// effectiveMass takes u = the normal, tangentialMass u = the sliding direction (the tangential
+// part of relativeVelocity; without sliding the normal's value). For a contact whose normal
+// passes through both centres (two spheres) effectiveMass = 1 / (1/m_i + 1/m_j), the classic
+// effective mass; a grain touched off-centre is lighter there (a point at its bounding radius
+// over a lever arm normal to the force: ~1/5 of its mass). The dashpots scale with these
+// masses, so that each contact point has the damping ratio of its coefficients and a time step
+// that resolves the spring resolves the dashpot (scaled by the centre-of-mass mass, a dashpot
+// on a lever arm is several times overdamped and beyond the integrator's limit c dt / m < 2 at
+// that step: resting grains then chatter on for ever, bench/resting_energy.cpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -22,8 +35,13 @@ struct Contact {
   double penetration = 0.0;                                    // eps - d/2 [m]
   Eigen::Vector3d relativeVelocity = Eigen::Vector3d::Zero();  // v_j - v_i at the point [m/s]
   double normalVelocity = 0.0;                                 // relativeVelocity . normal
-  double effectiveMass = 0.0;                                  // [kg]
+  double effectiveMass = 0.0;                                  // along the normal [kg]
+  double tangentialMass = 0.0;                                 // along the sliding [kg]
 };
+
+// 1/m of `body` for a force at `point` along the unit `direction` (the sum's term above).
+double inverseMassAt(const dynamics::RigidBody& body, const Eigen::Vector3d& point,
+                     const Eigen::Vector3d& direction);
 
 // The contact of two rigid bodies at `point` (velocities of their material points there).
 Contact makeContact(const dynamics::RigidBody& first, const dynamics::RigidBody& second,

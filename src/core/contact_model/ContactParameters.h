@@ -5,11 +5,11 @@
 //
 // Names used by the sub-models of this directory (units SI):
 //   stiffness [N/m]              normal halo spring S
-//   damping [sqrt(kg)/s]         approach damping D (force 2 D sqrt(m_eff) |v_n|)
+//   damping [sqrt(kg)/s]         approach damping D (force 2 D sqrt(m_eff) |v_n|; masses: Contact.h)
 //   friction [-]                 Coulomb coefficient mu
 //   slidingDamping [N s/m]       viscous sliding coefficient gamma
 //   tangentialStiffness [N/m]    tangential spring k_t
-//   tangentialDamping [sqrt(kg)/s]  tangential dashpot D_t (force 2 D_t sqrt(m_eff) v_t)
+//   tangentialDamping [sqrt(kg)/s]  tangential dashpot D_t (force 2 D_t sqrt(m_t) v_t)
 //   cohesionEnergyDensity [J/m^3]   k_c of the sjkr-like cohesion
 //   characteristicRadius [m]     R* = r_i r_j / (r_i + r_j) of the volume-equivalent radii
 //   haloDepth [m]                eps

@@ -1,5 +1,6 @@
 // Damping slot `approach`: the "pseudo-elastic" damping of paper eq. (1), acting only while the
-// bodies approach (v_n < 0): F_d = 2 D sqrt(m_eff) (-v_n), 0 while they separate. Written with
+// bodies approach (v_n < 0): F_d = 2 D sqrt(m_eff) (-v_n), 0 while they separate (m_eff: the
+// contact point's mass along the normal, rotation included, Contact.h). Written with
 // the sign that dissipates energy (the paper's sign follows its own orientation of v_ij). With
 // the halo spring S, one contact point has the damping ratio zeta = D sqrt(2 / S) whatever the
 // masses, and the coefficient of restitution springDashpotRestitution(zeta) (derivation in

@@ -1,5 +1,8 @@
 #include "contact_model/MaterialMapping.h"
 
+#include "contact_model/DampingApproach.h"
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -40,10 +43,26 @@ double mindlinStiffnessRatio(double youngsI, double poissonI, double youngsJ, do
   return 4.0 * shear / effectiveModulus(youngsI, poissonI, youngsJ, poissonJ);
 }
 
+double tangentialDampingFor(double stiffness, double damping, double tangentialStiffness) {
+  if (!(stiffness > 0.0) || !(damping >= 0.0) || !(tangentialStiffness >= 0.0))
+    throw std::invalid_argument("tangentialDampingFor: stiffnesses must be > 0, damping >= 0");
+  const double e = springDashpotRestitution(damping * std::sqrt(2.0 / stiffness));
+  if (!(e < 1.0)) return 0.0;
+  const double logE = std::log(e);
+  return -logE / std::sqrt(M_PI * M_PI + logE * logE) * std::sqrt(tangentialStiffness);
+}
+
+double dampedStableStep(double omega, double zeta) {
+  if (!(omega > 0.0) || !(zeta >= 0.0))
+    throw std::invalid_argument("dampedStableStep: omega must be > 0, zeta >= 0");
+  return 2.0 * (std::sqrt(1.0 + zeta * zeta) - zeta) / omega;
+}
+
 ContactTiming contactTiming(double stiffness, double damping, double effectiveMass,
-                            double tangentialStiffness, double tangentialMass) {
-  if (!(stiffness > 0.0) || !(effectiveMass > 0.0) || !(damping >= 0.0))
-    throw std::invalid_argument("contactTiming: stiffness and mass must be > 0, damping >= 0");
+                            double tangentialStiffness, double tangentialDamping, double pointMass) {
+  if (!(stiffness > 0.0) || !(effectiveMass > 0.0) || !(damping >= 0.0) || !(pointMass > 0.0) ||
+      !(tangentialDamping >= 0.0))
+    throw std::invalid_argument("contactTiming: stiffness and masses must be > 0, damping >= 0");
   ContactTiming t;
   const double omega = std::sqrt(stiffness / (2.0 * effectiveMass));
   const double zeta = damping * std::sqrt(2.0 / stiffness);
@@ -61,12 +80,12 @@ ContactTiming contactTiming(double stiffness, double damping, double effectiveMa
     compression = std::atanh(s / zeta) / (omega * s);
   }
   t.contactTime = compression + 0.5 * M_PI / omega;
-  double fastest = omega;
-  if (tangentialStiffness > 0.0 && tangentialMass > 0.0) {
-    t.tangentialFrequency = std::sqrt(tangentialStiffness / tangentialMass);
-    fastest = std::max(fastest, t.tangentialFrequency);
+  t.stableStep = dampedStableStep(std::sqrt(stiffness / (2.0 * pointMass)), zeta);
+  if (tangentialStiffness > 0.0) {
+    t.tangentialFrequency = std::sqrt(tangentialStiffness / pointMass);
+    t.stableStep = std::min(t.stableStep, dampedStableStep(t.tangentialFrequency,
+                                                           tangentialDamping / std::sqrt(tangentialStiffness)));
   }
-  t.stableStep = 2.0 / fastest;
   return t;
 }
 

@@ -64,6 +64,8 @@ class TangentialSubModel : public SubModel {
                                        double dt) const = 0;
   // Stiffness of the tangential spring [N/m], 0 without one (time-step estimates).
   virtual double stiffness() const { return 0.0; }
+  // D_t of its dashpot [sqrt(kg)/s], 0 without one (time-step estimates).
+  virtual double damping() const { return 0.0; }
 };
 
 class RollingSubModel : public SubModel {

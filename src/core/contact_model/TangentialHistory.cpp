@@ -27,7 +27,7 @@ Eigen::Vector3d TangentialHistory::forceOnFirst(const Contact& c, double normalF
     const double spring = stiffness_ * xi.norm();
     if (spring > cap) xi *= cap / spring;  // sliding: the spring holds mu F
   }
-  Eigen::Vector3d force = stiffness_ * xi + (2.0 * damping_ * std::sqrt(c.effectiveMass)) * sliding;
+  Eigen::Vector3d force = stiffness_ * xi + (2.0 * damping_ * std::sqrt(c.tangentialMass)) * sliding;
   const double magnitude = force.norm();
   if (magnitude > cap) force *= cap / magnitude;
   return force;

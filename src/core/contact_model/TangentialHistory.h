@@ -8,15 +8,15 @@
 // LIGGGHTS' tangential history model; LAMMPS' linear_history cuts spring plus dashpot, which
 // turns xi against the sliding when the dashpot alone exceeds mu F, and the spring then pushes
 // the body on when the sliding slows). The force
-//   f_t = k_t xi + 2 D_t sqrt(m_eff) v_t,  scaled down to mu F if longer,
+//   f_t = k_t xi + 2 D_t sqrt(m_t) v_t,  scaled down to mu F if longer,
 // acts on the first body (j gets -f_t): the first body is pulled along with the second's
 // relative displacement. So |f_t| <= mu F always, and at rest (v_t = 0) the spring holds up to
 // mu F: static friction. dt = 0 evaluates the stored xi without changing it (the force
 // computation of a run's setup repeats the last step's force: LIGGGHTS' shearupdate = 0).
 // A new contact starts with xi = 0; a contact that opens loses it (the caller drops its slot).
 // Coefficients: friction mu >= 0, tangentialStiffness k_t [N/m] > 0, tangentialDamping D_t
-// [sqrt(kg)/s] >= 0 (one contact point: damping ratio D_t / sqrt(k_t) of the tangential
-// oscillation m_eff xi'' = -k_t xi).
+// [sqrt(kg)/s] >= 0 (m_t: the contact point's mass along the sliding, Contact.h; damping ratio
+// D_t / sqrt(k_t) of the tangential oscillation m_t xi'' = -k_t xi).
 #pragma once
 
 #include "contact_model/ContactParameters.h"
@@ -32,6 +32,7 @@ class TangentialHistory : public TangentialSubModel {
   Eigen::Vector3d forceOnFirst(const Contact& c, double normalForce, double* history,
                                double dt) const override;
   double stiffness() const override { return stiffness_; }
+  double damping() const override { return damping_; }
 
  private:
   double friction_, stiffness_, damping_;
