@@ -211,7 +211,11 @@ def main():
         points = positions(final if os.path.exists(final) else os.path.join(wd, "heap_latest.dump"))
         surface, height, angle = repose(points, radius)
         surfaces = [s for s in surfaces if s[0] != kind] + [(kind, r, z) for r, z in surface]
-        summary[kind] = dict(kind=kind, particles=len(points), lost=a.side ** 3 - len(points),
+        lost = a.side ** 3 - len(points)
+        if "ERROR: Lost atoms" in log:  # the grains' deck stops when one leaves the box
+            lost = max(lost, 1)
+            print("%s: stopped by a lost particle after its last dump" % kind)
+        summary[kind] = dict(kind=kind, particles=len(points), lost=lost,
                              time_s=rows[-1][0], ke_final_J=rows[-1][2], ke_peak_J=peak,
                              ke_ratio=rows[-1][2] / peak, stands=int(rows[-1][2] < 1e-9 * peak), radius_m=radius, height_m=height,
                              angle_deg=angle, wall_s=wall, load="%.1f-%.1f" % (load0, load1))
