@@ -10,6 +10,10 @@ of the grains' volume-equivalent radius, no rolling friction): a side x side x s
 collapses into a heap; each deck runs in chunks of `--chunk` steps of `--dt` until the kinetic
 energy at a chunk end is below 1e-9 of the largest one at a chunk end (or `--chunks` chunks).
 
+As context only, `spheres_rolling`: the same spheres with LIGGGHTS' rolling friction
+(`rolling_friction cdt`, coefficientRollingFriction 0.1), the usual stand-in for the shape's
+resistance to rolling.
+
 Measured per run: grains left (none may be lost for the grains; spheres that roll off the floor
 leave the box), simulated time, kinetic energy at the end / its largest value over the whole
 thermo record, whether it stands (that ratio < 1e-9), heap height, and the angle of repose: the
@@ -22,7 +26,7 @@ than that layer has no angle (nan: "no heap").
 
     bench/heap_repose.py [--exe build/liggghts-spacetree] [--workdir build/heap_repose]
                          [--side 10] [--dt 1e-4] [--chunk 500] [--chunks 400]
-                         [--only grains|spheres] [--analyze] [--replot]
+                         [--only grains|spheres|spheres_rolling] [--analyze] [--replot]
 
 Writes bench/results/heap_repose.csv (surface points of both heaps), heap_repose_summary.csv
 and heap_repose.png. --analyze measures runs already in the work dir (a run stopped before it
@@ -45,6 +49,9 @@ from make_hopper import write_stl  # noqa: E402
 
 OUT = os.path.join(HERE, "results", "heap_repose")
 DENSITY = 2500.0
+# kind: (deck, extra variables)
+KINDS = {"grains": ("in.heap_grains", {}), "spheres": ("in.heap_spheres", {}),
+         "spheres_rolling": ("in.heap_spheres", {"rolling": "cdt", "murolling": 0.1})}
 
 
 def floor_triangles():
@@ -128,7 +135,7 @@ def plot(summary, surfaces, out, released):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
-    for kind, style in (("grains", "o-"), ("spheres", "s--")):
+    for kind, style in (("grains", "o-"), ("spheres", "s--"), ("spheres_rolling", "^:")):
         pts = [(float(r), float(z)) for k, r, z in surfaces if k == kind]
         if not pts:
             continue
@@ -154,7 +161,7 @@ def main():
     ap.add_argument("--side", type=int, default=10, help="grains per side of the released block (even)")
     ap.add_argument("--dt", type=float, default=1e-4, help="time step (s)")
     ap.add_argument("--chunk", type=int, default=500, help="steps per chunk")
-    ap.add_argument("--only", choices=["grains", "spheres"])
+    ap.add_argument("--only", choices=list(KINDS))
     ap.add_argument("--replot", action="store_true")
     ap.add_argument("--analyze", action="store_true",
                     help="run nothing: measure the logs and dumps already in the work dir (a run stopped "
@@ -175,14 +182,14 @@ def main():
         summary = {r["kind"]: r for r in csv.DictReader(open(out + "_summary.csv"))}
         surfaces = [(r["kind"], r["r_m"], r["z_m"]) for r in csv.DictReader(open(out + ".csv"))]
     grain_radius = None
-    for kind in ("grains", "spheres"):
+    for kind in KINDS:
         if a.only and kind != a.only:
             continue
         wd = os.path.join(a.workdir, kind)
         os.makedirs(wd, exist_ok=True)
         write_stl(os.path.join(wd, "floor.stl"), floor_triangles())
-        variables = dict(chunks=a.chunks, side=a.side, dt=a.dt, chunk=a.chunk)
-        if kind == "spheres":
+        variables = dict(chunks=a.chunks, side=a.side, dt=a.dt, chunk=a.chunk, **KINDS[kind][1])
+        if kind != "grains":
             if grain_radius is None:
                 grain_radius = float(summary["grains"]["radius_m"])
             variables["r"] = grain_radius
@@ -192,7 +199,7 @@ def main():
             load0 = load1 = float("nan")
         else:
             load0 = os.getloadavg()[0]
-            log, wall = run(a.exe, "in.heap_%s" % kind, wd, kind, variables)
+            log, wall = run(a.exe, KINDS[kind][0], wd, kind, variables)
             load1 = os.getloadavg()[0]
         mass = float(re.findall(r"grain mass ([0-9.eE+-]+)", log)[0])  # atom 1 may leave later
         radius = (3 * mass / (4 * math.pi * DENSITY)) ** (1.0 / 3.0)
@@ -204,7 +211,11 @@ def main():
         points = positions(final if os.path.exists(final) else os.path.join(wd, "heap_latest.dump"))
         surface, height, angle = repose(points, radius)
         surfaces = [s for s in surfaces if s[0] != kind] + [(kind, r, z) for r, z in surface]
-        summary[kind] = dict(kind=kind, particles=len(points), lost=a.side ** 3 - len(points),
+        lost = a.side ** 3 - len(points)
+        if "ERROR: Lost atoms" in log:  # the grains' deck stops when one leaves the box
+            lost = max(lost, 1)
+            print("%s: stopped by a lost particle after its last dump" % kind)
+        summary[kind] = dict(kind=kind, particles=len(points), lost=lost,
                              time_s=rows[-1][0], ke_final_J=rows[-1][2], ke_peak_J=peak,
                              ke_ratio=rows[-1][2] / peak, stands=int(rows[-1][2] < 1e-9 * peak), radius_m=radius, height_m=height,
                              angle_deg=angle, wall_s=wall, load="%.1f-%.1f" % (load0, load1))
@@ -221,7 +232,7 @@ def main():
                   "height_m", "angle_deg", "wall_s", "load"]
         w = csv.DictWriter(f, fieldnames=fields)
         w.writeheader()
-        for kind in ("grains", "spheres"):
+        for kind in KINDS:
             if kind in summary:
                 w.writerow({k: summary[kind][k] for k in fields})
     plot(summary, surfaces, out, a.side ** 3)

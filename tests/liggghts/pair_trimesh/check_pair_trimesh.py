@@ -62,6 +62,22 @@ def radius(volume):
     return (3.0 * volume / (4.0 * math.pi)) ** (1.0 / 3.0)
 
 
+def zeta_of_restitution(e):
+    """The damping ratio of the approach-only dashpot with restitution e (DampingApproach.h), by
+    bisection on its closed form."""
+    def restitution(z):
+        if z < 1:
+            s = math.sqrt(1 - z * z)
+            return math.exp(-z / s * math.atan(s / z))
+        s = math.sqrt(z * z - 1)
+        return math.exp(-z / s * math.atanh(s / z))
+    lo, hi = 1e-12, 50.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if restitution(mid) > e else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
 def halo_stiffness(e1, nu1, r1, e2, nu2, r2):
     """S = 4 E* R* (contact_model/MaterialMapping.h), r = inf for a fixed obstacle."""
     estar = 1.0 / ((1 - nu1 ** 2) / e1 + (1 - nu2 ** 2) / e2)
@@ -163,6 +179,18 @@ def case_spring(R, np):
             check(m is not None and abs(float(m.group(1)) / S - 1) < 1e-3 and abs(float(m.group(2)) / kt - 1) < 1e-3,
                   "spring: printed stiffness %s / tangential %s N/m = 4 E* R* %.4g / Mindlin %.4g"
                   % (m.group(1) if m else "?", m.group(2) if m else "?", S, kt))
+            # the stable step with the dashpots (leapfrog: 2 (sqrt(1 + zeta^2) - zeta) / omega) of
+            # the normal (zeta of e = 0.5, approach only) and tangential (two-way zeta_t of e)
+            # oscillation; rotation no: the contact point's mass is the cube's
+            e = 0.5
+            zeta = zeta_of_restitution(e)
+            zeta_t = -math.log(e) / math.sqrt(math.pi ** 2 + math.log(e) ** 2)
+            limit = lambda omega, z: 2 * (math.sqrt(1 + z * z) - z) / omega  # noqa: E731
+            stable = min(limit(math.sqrt(S / (2 * mass)), zeta), limit(math.sqrt(kt / mass), zeta_t))
+            m = re.search(r"type pair 1 2: .*largest stable time step ([0-9.e+-]+) s", text)
+            check(m is not None and abs(float(m.group(1)) / stable - 1) < 1e-3,
+                  "spring: printed stable step %s s = %.4g s of the dashpots on the cube's mass"
+                  % (m.group(1) if m else "?", stable))
             n = t["ncont"][-1]
             offset = t["xg"][-1] - t["xg"][0]
             expected = push / (n * kt)
