@@ -106,8 +106,9 @@ def col(names, rows, name):
 
 
 def history(path):
-    """fix adapt/timestep file: step time dt critical vetoed floored max_overlap contacts ..."""
-    return np.array([[float(x) for x in l.split()] for l in open(path) if not l.startswith("#")])
+    """fix adapt/timestep file: step time dt critical vetoed floored max_overlap contacts ... (the
+    numeric columns; the last one, `limit`, names the bound that set the step)"""
+    return np.array([[float(x) for x in l.split()[:-1]] for l in open(path) if not l.startswith("#")])
 
 
 def spring_dashpot(m_eff):
