@@ -161,6 +161,13 @@ def case_collide(a, procs):
     check(pen[first] <= 0.5 * 1.0 * dtc * 1.01, "entry penetration %.3g <= half a step's closing %.3g"
           % (pen[first], 0.5 * dtc))
     check(col(na, ta, "dtv[8]")[-1] < 8e-5, "largest penetration %.3g < eps 8e-5" % col(na, ta, "dtv[8]")[-1])
+    # the file's `limit` column names the bound of each chosen step: dtmax in flight, dtcontact in contact
+    rows = [l.split() for l in open(os.path.join(a.workdir, "dt_collide_%d.txt" % procs)) if not l.startswith("#")]
+    at_ceiling = [r[-1] for r in rows if abs(float(r[2]) - 1e-4) < 1e-16]
+    at_contact = [r[-1] for r in rows if abs(float(r[2]) / dtc - 1) < 1e-12]
+    check(at_ceiling and at_contact and set(at_ceiling) == {"dtmax"} and set(at_contact) == {"contact"},
+          "file: the %d steps at dtmax name 'dtmax', the %d at dtcontact 'contact' (%s, %s)"
+          % (len(at_ceiling), len(at_contact), sorted(set(at_ceiling)), sorted(set(at_contact))))
     # steps to cover the fixed run's time
     steps_adapt = int(np.argmax(time_ >= col(nf, tf, "Time")[-1] - 1e-12))
     check(0 < steps_adapt < len(tf) - 1, "adaptive: %d steps for the fixed run's %.4g s (fixed: %d)"
