@@ -25,6 +25,11 @@ nothing; the pour: inputs/pour/in.pour):
             (creep 1.1, veto, dtcontact): penetration below half the halo, no grain lost, the
             settled bed's mean height equal to a fixed step's within 10 % (the packing spreads it
             by up to 7 % between fixed steps and builds), fewer steps
+  resting   an L prism of the pour lying flat on the floor (6 contact points, inputs/pour/in.resting)
+            at fixed steps: at 6e-6 s it comes to rest (kinetic energy < 1e-20 J, all 6 points
+            kept); at 9e-6 s it hops (points lost): the stability limit of a resting face contact
+            that docs/fix_adapt_timestep.md gives for choosing dtrest/dtcontact (6.5e-6 to 7.5e-6 s,
+            bench/resting_stability.py); the damping of its rocking modes, not the spring, sets it
   badinput  eps beyond the halo, eps 0: stop with a clear ERROR
 RANKS 2 splits the box in x (the pair on the rank boundary) and compares with the 1-rank run.
 """
@@ -45,6 +50,7 @@ OK = True
 
 DECK = os.path.join(HERE, "in.bodies")
 POUR = os.path.join(ROOT, "inputs", "pour", "in.pour")
+RESTING = os.path.join(ROOT, "inputs", "pour", "in.resting")
 RHO, S, D, HALO = 2500.0, 5e5, 150.0, 1e-4
 
 
@@ -318,6 +324,25 @@ def case_pour(a, procs):
     steps_a = int(ha[np.argmax(ha[:, 1] >= T - 1e-12), 0])
     steps_f = int(hf[-1, 0])
     check(steps_a < steps_f, "adaptive: %d steps for %g s, fixed: %d (%.2f)" % (steps_a, T, steps_f, steps_a / steps_f))
+
+
+def case_resting(a, procs):
+    subprocess.run([sys.executable, os.path.join(ROOT, "inputs", "pour", "make_pour.py"), a.workdir], check=True)
+    T = 0.04
+    for dt, rests in ((6e-6, True), (9e-6, False)):
+        rc, _, log = run(a, RESTING, "resting_%g" % dt, dict(meshdir=a.workdir, dt=dt, T=T, layers=1, th=10))
+        check(rc == 0, "flat prism on the floor, fixed dt %g s: runs" % dt)
+        if rc:
+            return
+        names, rows = thermo(log)
+        late = rows[col(names, rows, "Time") >= 0.5 * T]
+        ke, points = col(names, late, "integr").max(), col(names, late, "ncont").min()
+        if rests:
+            check(ke < 1e-20 and points == 6, "dt %g s: at rest on its 6 corners (largest kinetic energy of the "
+                  "second half %.3g J, fewest contact points %d)" % (dt, ke, points))
+        else:
+            check(points < 6 and ke > 1e-12, "dt %g s: unstable, the prism hops (largest kinetic energy of the "
+                  "second half %.3g J, fewest contact points %d)" % (dt, ke, points))
 
 
 def case_badinput(a, procs):
