@@ -25,8 +25,19 @@ floor. For each adaptive run the summary gives the largest fixed step as accurat
 the ratio adaptive steps / fixed steps, and the ratio to the fixed step equal to `dtcontact` (the
 step that resolves the fastest contact as the adaptive run does).
 
+A run that loses a grain (LIGGGHTS stops: "Lost atoms") is unstable: its row says when
+(`lost_at`), its errors are inf, and it is never "as accurate".
+
+Phases (from the reference): free fall to the first contact, impacts to the peak of the kinetic
+energy, dense flow until it is down to a tenth of the peak, settling to the end. Per run and
+phase: the steps, the mean step, the phase's part of the KE-history error, and for adaptive runs
+the share of the steps each bound set (the `limit` column of the fix's file dt.txt: creep, dtmax,
+contact, rest, veto, other).
+
 Writes OUT.csv (one row per run), OUT_summary.csv (per adaptive run: the matching fixed step and
-the step ratio) and OUT.png (KE histories, dt histories, error against steps)."""
+the step ratio), OUT_phases.csv and OUT.png (KE histories; adaptive steps against time with the
+fixed step as accurate, the fixed steps and the resting-stability limits of
+bench/results/resting_stability.csv; error against steps)."""
 import argparse
 import csv
 import math
@@ -50,7 +61,7 @@ def run(a, name, dt, adapt, every):
     work = os.path.join(a.work, name)
     hist = os.path.join(work, "pour_history.txt")
     done = os.path.join(work, "done")
-    if os.path.exists(done) or a.analyse:
+    if os.path.exists(done) or os.path.exists(os.path.join(work, "unstable")) or a.analyse:
         return hist
     os.makedirs(work, exist_ok=True)
     deck = os.path.join(work, "in.pour")     # a copy: LIGGGHTS reads its input while it runs
@@ -63,11 +74,17 @@ def run(a, name, dt, adapt, every):
            "-var", "every", str(every), "-var", "th", "1000", "-var", "zlo", str(a.zlo),
            "-var", "out", "pour"]
     if adapt:
-        cmd += ["-var", "adapt", "fix dtv all adapt/timestep " + adapt, "-var", "tend", "%.9g" % a.time]
+        # the fix's own record of every decision (which criterion set the step: its `limit` column)
+        cmd += ["-var", "adapt", "fix dtv all adapt/timestep " + adapt + " file " + os.path.join(work, "dt.txt"),
+                "-var", "tend", "%.9g" % a.time]
     env = dict(os.environ, OMP_NUM_THREADS="1")
     p = subprocess.run(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                        errors="replace", env=env)
     if p.returncode != 0:
+        if "Lost atoms" in p.stdout:
+            # unstable: a grain was shot out of the box (kept as a result, never "as accurate")
+            open(os.path.join(work, "unstable"), "w").write(p.stdout[-2000:])
+            return hist
         raise RuntimeError("%s failed:\n%s" % (name, p.stdout[-3000:]))
     open(done, "w").write("ok\n")
     return hist
@@ -165,12 +182,15 @@ def main():
     ref = hists["ref"][2]
     rows = []
     for name, (dt, adapt, h) in hists.items():
-        if h["time"][-1] < a.time - 1e-9:
+        unstable = os.path.exists(os.path.join(a.work, name, "unstable"))
+        if h["time"][-1] < a.time - 1e-9 and not unstable:
             print("%s: incomplete (t = %.4g)" % (name, h["time"][-1]))
             continue
-        e = errors(h, ref, a.time)
+        # an unstable run (a grain lost at time t_lost) is never as accurate as anything
+        e = {m: float("inf") for m in METRICS + ("pen_max",)} if unstable else errors(h, ref, a.time)
+        steps = int(round(a.time / dt)) if unstable and not adapt else int(h["steps_to_T"])
         rows.append(dict(name=name, kind="adaptive" if adapt else "fixed", dt=dt if not adapt else "",
-                         args=adapt or "", steps=int(h["steps_to_T"]),
+                         args=adapt or "", steps=steps, lost_at="%.4g" % h["time"][-1] if unstable else "",
                          loop_s="%.1f" % cpu_seconds(os.path.join(a.work, name)),
                          ke_err="%.4g" % e["ke_err"], z_err="%.4g" % e["z_err"], pen_err="%.4g" % e["pen_err"],
                          pen_max="%.4g" % e["pen_max"]))
@@ -204,18 +224,90 @@ def main():
         w.writeheader()
         w.writerows(summary)
     for r in rows:
-        print("%-14s steps %7d  ke_err %-9s z_err %-9s pen_err %-8s pen_max %-8s loop %s s" %
-              (r["name"], r["steps"], r["ke_err"], r["z_err"], r["pen_err"], r["pen_max"], r["loop_s"]))
+        print("%-14s steps %7d  ke_err %-9s z_err %-9s pen_err %-8s pen_max %-8s loop %s s%s" %
+              (r["name"], r["steps"], r["ke_err"], r["z_err"], r["pen_err"], r["pen_max"], r["loop_s"],
+               "  UNSTABLE: grain lost at t = %s s" % r["lost_at"] if r["lost_at"] else ""))
     print("noise floor (%s): %s" % (floor_name, floor))
     for s_ in summary:
         print("%s: %s steps; largest fixed step as accurate %s (%s steps): ratio %s; to a fixed step of "
               "dtcontact: %s" % (s_["adaptive"], s_["adaptive_steps"], s_["fixed_dt"] or "none",
                                  s_["fixed_steps"], s_["step_ratio"], s_["ratio_to_dtcontact"]))
-    plot(a, hists, rows)
+    table = phase_table(a, hists, ref)
+    if table:
+        with open(a.out + "_phases.csv", "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(table[0].keys()))
+            w.writeheader()
+            w.writerows(table)
+        print("phases (steps, mean dt, part of the KE error; adaptive: shares of the bounds that set the step):")
+        for r in table:
+            lims = " ".join("%s %s" % (l, r["limit_" + l]) for l in LIMITS + ("other",) if r["limit_" + l] not in ("", "0.000"))
+            print("  %-14s %-10s %s-%s s  steps %6d  mean dt %-8s ke_err part %s  %s" %
+                  (r["run"], r["phase"], r["t_from"], r["t_to"], r["steps"], r["mean_dt"], r["ke_err_part"], lims))
+    plot(a, hists, rows, summary)
     return 0
 
 
-def plot(a, hists, rows):
+LIMITS = ("creep", "dtmax", "contact", "rest", "veto")
+
+
+def phases(ref, tmax):
+    """Phases of the pour from the reference: free fall (to the first contact), impacts (to the
+    peak of the kinetic energy: grains land while the upper layers still fall), dense flow (until
+    the kinetic energy is down to a tenth of its peak) and settling (to the end)."""
+    t, ke = ref["time"], ref["ke"]
+    t1 = next(x for x, c in zip(t, ref["contacts"]) if c > 0)
+    k = max(range(len(ke)), key=lambda i: ke[i])
+    t3 = next((t[i] for i in range(k, len(t)) if ke[i] < 0.1 * ke[k]), tmax)
+    return [("free fall", 0.0, t1), ("impacts", t1, t[k]), ("dense flow", t[k], t3), ("settling", t3, tmax)]
+
+
+def decisions(work):
+    """The fix's file (adaptive runs): (time, dt, limit) per step."""
+    path = os.path.join(work, "dt.txt")
+    if not os.path.exists(path):
+        return None
+    rows = []
+    for line in open(path):
+        if line.startswith("#"):
+            continue
+        v = line.split()
+        rows.append((float(v[1]), float(v[2]), v[-1]))
+    return rows
+
+
+def phase_table(a, hists, ref):
+    """Per run and phase: steps, mean step, the bounds that set the adaptive steps (shares), and
+    the phase's part of the kinetic-energy error."""
+    table = []
+    for name, (dt, adapt, h) in hists.items():
+        if name == "ref" or os.path.exists(os.path.join(a.work, name, "unstable")):
+            continue
+        dec = decisions(os.path.join(a.work, name)) if adapt else None
+        n = 3000
+        grid = [a.time * (k + 0.5) / n for k in range(n)]
+        den = sum(interp(ref["time"], ref["ke"], t) for t in grid)
+        for phase, t0, t1 in phases(ref, a.time):
+            if adapt:
+                # a step belongs to the phase it ends in (the history's time is the step's end)
+                steps = sum(1 for t in h["time"] if t0 < t <= t1 + 1e-12)
+            else:
+                steps = int(round((t1 - t0) / dt))
+            part = sum(abs(interp(h["time"], h["ke"], t) - interp(ref["time"], ref["ke"], t))
+                       for t in grid if t0 <= t < t1) / den
+            row = dict(run=name, phase=phase, t_from="%.4f" % t0, t_to="%.4f" % t1, steps=steps,
+                       mean_dt="%.3g" % ((t1 - t0) / steps if steps else float("nan")), ke_err_part="%.4f" % part)
+            for lim in LIMITS + ("other",):
+                row["limit_" + lim] = ""
+            if dec:
+                chosen = [d for d in dec if t0 <= d[0] < t1]   # the decision taken at the step's end
+                for lim in LIMITS:
+                    row["limit_" + lim] = "%.3f" % (sum(1 for d in chosen if d[2] == lim) / max(len(chosen), 1))
+                row["limit_other"] = "%.3f" % (sum(1 for d in chosen if d[2] not in LIMITS) / max(len(chosen), 1))
+            table.append(row)
+    return table
+
+
+def plot(a, hists, rows, summary):
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -229,19 +321,36 @@ def plot(a, hists, rows):
         label = ("reference dt %.3g s" % dt) if name == "ref" else (name if adapt else "fixed dt %.3g s" % dt)
         ax[0].plot(t, h["ke"], label=label, **style)
         if adapt:
-            ax[1].semilogy(t, h["dt"], label=name, **style)
+            line, = ax[1].semilogy(t, h["dt"], label=name, **style)
+            match = next((s_ for s_ in summary if s_["adaptive"] == name and s_["fixed_dt"]), None)
+            if match:   # the fixed step as accurate as this run
+                ax[1].axhline(float(match["fixed_dt"]), color=line.get_color(), lw=1.0, ls=":",
+                              label="fixed step as accurate as %s: %g s" % (name, float(match["fixed_dt"])))
     for r in rows:
         if r["kind"] == "fixed" and r["name"] != "ref":
-            ax[1].axhline(float(r["dt"]), color="0.8", lw=0.6)
+            ax[1].axhline(float(r["dt"]), color="0.85" if not r["lost_at"] else "r", lw=0.6)
+    # the largest fixed steps at which flat-lying prisms stay at rest (bench/resting_stability.py)
+    rest = os.path.join(os.path.dirname(a.out), "resting_stability.csv")
+    if os.path.exists(rest):
+        rr = list(csv.DictReader(open(rest)))
+        for layers, color in (("1", "C4"), ("2", "C5")):
+            ok = [float(r["dt"]) for r in rr if r["layers"] == layers and r["state"] == "rests"]
+            if ok:
+                ax[1].axhline(max(ok), color=color, lw=1.2, ls="-.",
+                              label="%s flat prism%s at rest up to %g s" % (
+                                  "one" if layers == "1" else "two stacked", "" if layers == "1" else "s", max(ok)))
     ax[0].set_xlabel("simulated time (s)")
     ax[0].set_ylabel("kinetic energy of the grains (J)")
-    ax[0].set_title("kinetic energy history")
+    if "ref" in hists:   # an unstable run's blow-up (a grain shot out) leaves the scale
+        ax[0].set_ylim(0, 1.3 * max(hists["ref"][2]["ke"]))
+    ax[0].set_title("kinetic energy history (unstable runs leave the scale)")
     ax[0].legend(fontsize=7)
     ax[1].set_xlabel("simulated time (s)")
     ax[1].set_ylabel("time step (s)")
-    ax[1].set_title("adaptive step (grey: the fixed steps)")
+    ax[1].set_title("adaptive step (grey: the fixed steps; red: unstable)")
     ax[1].legend(fontsize=7)
-    fx = sorted((r for r in rows if r["kind"] == "fixed" and r["name"] != "ref"), key=lambda r: r["steps"])
+    fx = sorted((r for r in rows if r["kind"] == "fixed" and r["name"] != "ref" and not r["lost_at"]),
+                key=lambda r: r["steps"])
     ax[2].loglog([r["steps"] for r in fx], [float(r["ke_err"]) for r in fx], "o-", color="C0", label="fixed: KE history error")
     ax[2].loglog([r["steps"] for r in fx], [float(r["z_err"]) for r in fx], "s-", color="C1", label="fixed: bed height error")
     ax[2].loglog([r["steps"] for r in fx], [max(float(r["pen_err"]), 1e-4) for r in fx], "^-", color="C2",

@@ -120,7 +120,7 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
           snprintf(msg,sizeof(msg),"Fix adapt/timestep cannot open file '%s'",arg[iarg+1]);
           error->one(FLERR,msg);
         }
-        fprintf(history,"# step time dt critical_pairs vetoed floored max_overlap contacts rollbacks list_margin last_build contact_speed\n");
+        fprintf(history,"# step time dt critical_pairs vetoed floored max_overlap contacts rollbacks list_margin last_build contact_speed limit\n");
       }
     } else {
       char msg[256];
@@ -327,10 +327,10 @@ void FixAdaptTimestep::choose_timestep(const TimestepPairScan::Result &scan, dou
     floored_steps += 1;
   }
   if (history && comm->me == 0)
-    fprintf(history,BIGINT_FORMAT " %.12g %.12g %g %d %d %.6g %g %g %.6g " BIGINT_FORMAT " %.6g\n",update->ntimestep,
+    fprintf(history,BIGINT_FORMAT " %.12g %.12g %g %d %d %.6g %g %g %.6g " BIGINT_FORMAT " %.6g %s\n",update->ntimestep,
             update->atime + (update->ntimestep - update->atimestep)*dt,d.dt,critical_last,
             int(d.vetoed),int(d.floored),scan.maxOverlap,scan.contacts,rollbacks,limits.listMargin,
-            neighbor->lastcall,scan.contactSpeed);
+            neighbor->lastcall,scan.contactSpeed,spacetree::limiterName(d.limiter));
   if (d.dt != dt) set_dt(d.dt);
 }
 

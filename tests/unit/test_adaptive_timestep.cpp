@@ -212,6 +212,49 @@ TEST(AdaptiveTimestep, ContactCeilingAppliesOnlyWhilePairsOverlap) {
   EXPECT_DOUBLE_EQ(nextTimestep(5e-6, policy, limits, INFINITY).dt, 5.5e-6) << "creeps up to it";
 }
 
+// The decision names the bound that set the step (fix adapt/timestep's `limit` column): each
+// bound in turn made the smallest.
+TEST(AdaptiveTimestep, DecisionNamesTheBoundThatSetTheStep) {
+  TimestepPolicy policy;
+  policy.dtMax = 1e-3;
+  policy.dtContact = 1e-5;
+  policy.dtMin = 1e-8;
+  TimestepLimits limits;
+  auto limiter = [&](double dt, double veto = INFINITY) { return nextTimestep(dt, policy, limits, veto).limiter; };
+  EXPECT_EQ(limiter(1e-4), TimestepLimiter::Creep);
+  EXPECT_EQ(limiter(1e-3), TimestepLimiter::Ceiling);
+  limits.inContact = true;
+  EXPECT_EQ(limiter(1e-3), TimestepLimiter::Contact);
+  EXPECT_EQ(limiter(5e-6), TimestepLimiter::Creep) << "creeping back up to the contact ceiling";
+  // a slow contact under the contact-speed ceiling: dtRest applies
+  policy.impactSpeed = 1.0;
+  policy.contactTime = 1e-3;
+  policy.dtRest = 1e-4;
+  limits.contactSpeed = 0.01;  // dtContact * 1 / 0.01 = 1e-3 > dtRest
+  EXPECT_EQ(limiter(1e-3), TimestepLimiter::Rest);
+  limits.contactSpeed = 2.0;   // 5e-6
+  EXPECT_EQ(limiter(1e-3), TimestepLimiter::Contact);
+  EXPECT_DOUBLE_EQ(nextTimestep(1e-3, policy, limits, INFINITY).dt, 5e-6);
+  limits.inContact = false;
+  limits.maxSpeed = 1.0;
+  limits.finestCell = 1e-4;   // (1e-4 + 0) / 1 = 1e-4
+  EXPECT_EQ(limiter(1e-3), TimestepLimiter::Mesh);
+  limits.skin = 1e-4;          // 5e-5
+  EXPECT_EQ(limiter(1e-3), TimestepLimiter::Skin);
+  limits.listMargin = 4e-5;    // 2e-5
+  EXPECT_EQ(limiter(1e-3), TimestepLimiter::ListMargin);
+  const TimestepDecision vetoed = nextTimestep(1e-3, policy, limits, 3e-6);
+  EXPECT_EQ(vetoed.limiter, TimestepLimiter::Veto);
+  EXPECT_TRUE(vetoed.vetoed);
+  const TimestepDecision floored = nextTimestep(1e-3, policy, limits, 1e-9);
+  EXPECT_EQ(floored.limiter, TimestepLimiter::Floor);
+  EXPECT_TRUE(floored.vetoed && floored.floored);
+  EXPECT_DOUBLE_EQ(floored.dt, 1e-8);
+  EXPECT_STREQ(limiterName(TimestepLimiter::Contact), "contact");
+  EXPECT_STREQ(limiterName(TimestepLimiter::ListMargin), "margin");
+  EXPECT_STREQ(limiterName(TimestepLimiter::Floor), "dtmin");
+}
+
 TEST(TimestepRollback, RedoesOnlyStepsThatCausedTooDeepAnOverlap) {
   RollbackPolicy policy;  // fraction 0.5, shrink 0.5, 20 retries
   const double eps = 1e-3;

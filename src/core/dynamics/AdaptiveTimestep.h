@@ -37,10 +37,27 @@ struct TimestepLimits {
   double listMargin = 0.0;
 };
 
+// What set the step (the smallest of the bounds; the first of them in this order on a tie).
+enum class TimestepLimiter {
+  Creep,        // growth C dt: no bound was reached
+  Ceiling,      // dtMax
+  Contact,      // the contact ceiling (dtContact, or with impactSpeed the contact-speed one)
+  Rest,         // dtRest: the contacts are slow, the enduring-contact ceiling applies
+  Mesh,         // (h_min + halo) / v_max
+  Skin,         // skin / (2 v_max)
+  ListMargin,   // list margin / (2 v_max)
+  Veto,         // a critical approach
+  Floor         // dtMin (the rest asked for less)
+};
+// Short lower-case name ("creep", "dtmax", "contact", "rest", "mesh", "skin", "margin", "veto",
+// "dtmin"): the `limit` column of fix adapt/timestep's file.
+const char* limiterName(TimestepLimiter limiter);
+
 struct TimestepDecision {
   double dt = 0.0;
   bool vetoed = false;    // a critical approach cut the step
   bool floored = false;   // the caps or the veto asked for less than dtMin
+  TimestepLimiter limiter = TimestepLimiter::Creep;
 };
 
 // Speed of a contact's normal oscillation about its current equilibrium, sqrt(vn^2 + (an/omega)^2)

@@ -25,6 +25,11 @@ nothing; the pour: inputs/pour/in.pour):
             (creep 1.1, veto, dtcontact): penetration below half the halo, no grain lost, the
             settled bed's mean height equal to a fixed step's within 10 % (the packing spreads it
             by up to 7 % between fixed steps and builds), fewer steps
+  resting   an L prism of the pour lying flat on the floor (6 contact points, inputs/pour/in.resting)
+            at fixed steps: at 6e-6 s it comes to rest (kinetic energy < 1e-20 J, all 6 points
+            kept); at 9e-6 s it hops (points lost): the stability limit of a resting face contact
+            that docs/fix_adapt_timestep.md gives for choosing dtrest/dtcontact (6.5e-6 to 7.5e-6 s,
+            bench/resting_stability.py); the damping of its rocking modes, not the spring, sets it
   badinput  eps beyond the halo, eps 0: stop with a clear ERROR
 RANKS 2 splits the box in x (the pair on the rank boundary) and compares with the 1-rank run.
 """
@@ -45,6 +50,7 @@ OK = True
 
 DECK = os.path.join(HERE, "in.bodies")
 POUR = os.path.join(ROOT, "inputs", "pour", "in.pour")
+RESTING = os.path.join(ROOT, "inputs", "pour", "in.resting")
 RHO, S, D, HALO = 2500.0, 5e5, 150.0, 1e-4
 
 
@@ -106,8 +112,9 @@ def col(names, rows, name):
 
 
 def history(path):
-    """fix adapt/timestep file: step time dt critical vetoed floored max_overlap contacts ..."""
-    return np.array([[float(x) for x in l.split()] for l in open(path) if not l.startswith("#")])
+    """fix adapt/timestep file: step time dt critical vetoed floored max_overlap contacts ... (the
+    numeric columns; the last one, `limit`, names the bound that set the step)"""
+    return np.array([[float(x) for x in l.split()[:-1]] for l in open(path) if not l.startswith("#")])
 
 
 def spring_dashpot(m_eff):
@@ -160,6 +167,13 @@ def case_collide(a, procs):
     check(pen[first] <= 0.5 * 1.0 * dtc * 1.01, "entry penetration %.3g <= half a step's closing %.3g"
           % (pen[first], 0.5 * dtc))
     check(col(na, ta, "dtv[8]")[-1] < 8e-5, "largest penetration %.3g < eps 8e-5" % col(na, ta, "dtv[8]")[-1])
+    # the file's `limit` column names the bound of each chosen step: dtmax in flight, dtcontact in contact
+    rows = [l.split() for l in open(os.path.join(a.workdir, "dt_collide_%d.txt" % procs)) if not l.startswith("#")]
+    at_ceiling = [r[-1] for r in rows if abs(float(r[2]) - 1e-4) < 1e-16]
+    at_contact = [r[-1] for r in rows if abs(float(r[2]) / dtc - 1) < 1e-12]
+    check(at_ceiling and at_contact and set(at_ceiling) == {"dtmax"} and set(at_contact) == {"contact"},
+          "file: the %d steps at dtmax name 'dtmax', the %d at dtcontact 'contact' (%s, %s)"
+          % (len(at_ceiling), len(at_contact), sorted(set(at_ceiling)), sorted(set(at_contact))))
     # steps to cover the fixed run's time
     steps_adapt = int(np.argmax(time_ >= col(nf, tf, "Time")[-1] - 1e-12))
     check(0 < steps_adapt < len(tf) - 1, "adaptive: %d steps for the fixed run's %.4g s (fixed: %d)"
@@ -310,6 +324,25 @@ def case_pour(a, procs):
     steps_a = int(ha[np.argmax(ha[:, 1] >= T - 1e-12), 0])
     steps_f = int(hf[-1, 0])
     check(steps_a < steps_f, "adaptive: %d steps for %g s, fixed: %d (%.2f)" % (steps_a, T, steps_f, steps_a / steps_f))
+
+
+def case_resting(a, procs):
+    subprocess.run([sys.executable, os.path.join(ROOT, "inputs", "pour", "make_pour.py"), a.workdir], check=True)
+    T = 0.04
+    for dt, rests in ((6e-6, True), (9e-6, False)):
+        rc, _, log = run(a, RESTING, "resting_%g" % dt, dict(meshdir=a.workdir, dt=dt, T=T, layers=1, th=10))
+        check(rc == 0, "flat prism on the floor, fixed dt %g s: runs" % dt)
+        if rc:
+            return
+        names, rows = thermo(log)
+        late = rows[col(names, rows, "Time") >= 0.5 * T]
+        ke, points = col(names, late, "integr").max(), col(names, late, "ncont").min()
+        if rests:
+            check(ke < 1e-20 and points == 6, "dt %g s: at rest on its 6 corners (largest kinetic energy of the "
+                  "second half %.3g J, fewest contact points %d)" % (dt, ke, points))
+        else:
+            check(points < 6 and ke > 1e-12, "dt %g s: unstable, the prism hops (largest kinetic energy of the "
+                  "second half %.3g J, fewest contact points %d)" % (dt, ke, points))
 
 
 def case_badinput(a, procs):
