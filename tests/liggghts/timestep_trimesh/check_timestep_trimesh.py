@@ -329,7 +329,7 @@ def case_pour(a, procs):
 def case_resting(a, procs):
     subprocess.run([sys.executable, os.path.join(ROOT, "inputs", "pour", "make_pour.py"), a.workdir], check=True)
     T = 0.04
-    for dt, rests in ((6e-6, True), (9e-6, False)):
+    for dt, rests in ((9e-6, True), (1.2e-5, False)):
         rc, _, log = run(a, RESTING, "resting_%g" % dt, dict(meshdir=a.workdir, dt=dt, T=T, layers=1, th=10))
         check(rc == 0, "flat prism on the floor, fixed dt %g s: runs" % dt)
         if rc:
