@@ -204,8 +204,9 @@ class Spacetree {
   std::uint64_t linkLevels(int m, int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons,
                            std::uint64_t& tests);
   // The vertices of `level` with index in [lo, hi] per axis, slice by slice and row by row:
-  // sliceRange(i, jLo, jHi) and rowRange(i, j, kLo, kHi) may narrow the j range of a slice or
-  // the k range of a row (false: skip it); then f(slot) for each vertex. Only occupied slices
+  // sliceRange(i, jLo, jHi) and rowRange(i, j, rowVertices, kLo, kHi) may narrow the j range
+  // of a slice or the k range of a row of rowVertices vertices (false: skip it); then f(slot)
+  // for each vertex. Only occupied slices
   // and rows are visited.
   template <class SliceRange, class RowRange, class F>
   void forEachVertexIn(const Level& level, const std::int64_t lo[3], const std::int64_t hi[3],
@@ -224,6 +225,8 @@ class Spacetree {
   static std::int64_t indexAbove(double t) { return std::int64_t(t) + 1; }
   // Relative margin of that bound over the cut-off (round-off of the x difference).
   static constexpr double kPruneMargin = 1e-9;
+  // Rows of at most this many vertices are scanned whole (up to the look-up's k range).
+  static constexpr std::int32_t kShortRow = 8;
   int hostLevel(double required) const;
   // Checks positions and radii; returns the bounding box and the radius range.
   static void validate(const double (*x)[3], const double* radius, int n, double lo[3],
