@@ -352,9 +352,10 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   using Verdict = spacetree::NeighbourSearch::Verdict;
   st.count.assign(nlocal,0);
   int *count = st.count.data();
-  auto judge = [&](int i, int j, double rsq) {
-    // own/own pairs once under the lower index, own/ghost pairs under the owned atom
-    const double radsum = (radius[i] + radius[j]) * cdf;
+  auto judge = [&](int i, int j, double rsq, double contact_radsum) {
+    // own/own pairs once under the lower index, own/ghost pairs under the owned atom; with
+    // contact_distance_factor 1 the tree's radius sum is radius[i] + radius[j]
+    const double radsum = exact_cut ? contact_radsum : (radius[i] + radius[j]) * cdf;
     if (!exact_cut) {
       const double delx = x[i][0] - x[j][0];
       const double dely = x[i][1] - x[j][1];

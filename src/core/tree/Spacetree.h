@@ -33,6 +33,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "tree/GridGeometry.h"
@@ -78,7 +79,7 @@ class Spacetree {
   // Like forEachCandidatePair, but only pairs with
   //   dx^2 + dy^2 + dz^2 <= ((r_i + r_j + 2 eps) (1 + relativeTolerance))^2
   // reach the visitor, as visit(i, j, squaredDistance), evaluated in that order on the tree's own sorted copies (streaming
-  // access). With tolerance 0 this is bit for bit the cut-off of LIGGGHTS' granular builders
+  // access); a visitor taking visit(i, j, squaredDistance, radiusSum) also gets r_i + r_j. With tolerance 0 this is bit for bit the cut-off of LIGGGHTS' granular builders
   // (contact_distance_factor 1); a small tolerance makes it a superset of other roundings.
   template <class Visitor>
   void forEachPairWithin(Visitor&& visit, double relativeTolerance = 0.0) {
@@ -167,9 +168,17 @@ class Spacetree {
       return dx * dx + dy * dy + dz * dz;
     }
     double cut(std::int32_t a, std::int32_t b) const { return (tree.sr_[a] + tree.sr_[b] + halo) * scale; }
+    // The visitor gets (i, j, squaredDistance), or with a fourth parameter also r_i + r_j as
+    // the tree holds them (the caller's radii: no look-up of its arrays per pair).
+    void emit(std::int32_t a, std::int32_t b, double d2) const {
+      if constexpr (std::is_invocable_v<Visit&, int, int, double, double>)
+        visit(tree.sortedId_[a], tree.sortedId_[b], d2, tree.sr_[a] + tree.sr_[b]);
+      else
+        visit(tree.sortedId_[a], tree.sortedId_[b], d2);
+    }
     void operator()(std::int32_t a, std::int32_t b) const {
       const double d2 = distanceSquared(a, b), c = cut(a, b);
-      if (d2 <= c * c) visit(tree.sortedId_[a], tree.sortedId_[b], d2);
+      if (d2 <= c * c) emit(a, b, d2);
     }
     void range(std::int32_t a, std::int32_t first, std::int32_t last, bool aActive) const {
       constexpr std::int32_t kChunk = 32;
@@ -184,7 +193,7 @@ class Spacetree {
         }
         for (std::int32_t t = 0; t < count; ++t) {
           const std::int32_t b = hits[t];
-          if (aActive || tree.isActive(b)) visit(tree.sortedId_[a], tree.sortedId_[b], distanceSquared(a, b));
+          if (aActive || tree.isActive(b)) emit(a, b, distanceSquared(a, b));
         }
       }
     }
