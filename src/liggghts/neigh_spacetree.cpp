@@ -4,8 +4,9 @@
    the lower index, own/ghost pairs always, contact history copied from
    fix contacthistory), but finds the candidates with the multilevel
    spacetree instead of bins sized by the biggest particle. Four steps:
-   find the pairs (core NeighbourSearch), per-atom neighbour arrays, page
-   sizing for crowded particles, LIGGGHTS' pages with the contact history. */
+   find the pairs (core NeighbourSearch, counted per owned atom), the largest
+   count, page sizing for crowded particles, LIGGGHTS' pages with the contact
+   history. */
 
 #include <algorithm>
 #include <cstdio>
@@ -166,26 +167,29 @@ void Neighbor::spacetree_free()
 
 namespace {
 
-// 2. Per-atom neighbour arrays (CSR) from the listed pairs, each sorted by index for a
-//    canonical order (touching pairs, stored as ~j, sort first; the order is deterministic).
-//    Returns the largest neighbour count of an atom.
-int per_atom_arrays(NeighSpacetree &st, int nlocal)
+// 2. The largest neighbour count of an owned atom (the judge counted them).
+int largest_count(const NeighSpacetree &st, int nlocal)
 {
-  const spacetree::NeighbourSearch::ListedPairs &pairs = st.pairs;
-  st.first.assign(nlocal+1,0);
-  for (size_t p = 0; p < pairs.size(); p++) st.first[pairs.first[p]+1]++;
   int maxcount = 0;
-  for (int i = 0; i < nlocal; i++) {
-    maxcount = std::max(maxcount,st.first[i+1]);
-    st.first[i+1] += st.first[i];
-  }
-  st.neighbours.resize(pairs.size());
-  st.fill.assign(st.first.begin(),st.first.end()-1);
-  for (size_t p = 0; p < pairs.size(); p++)
-    st.neighbours[st.fill[pairs.first[p]]++] = pairs.second[p];
-  for (int i = 0; i < nlocal; i++)
-    std::sort(st.neighbours.begin()+st.first[i],st.neighbours.begin()+st.first[i+1]);
+  for (int i = 0; i < nlocal; i++) maxcount = std::max(maxcount,st.count[i]);
   return maxcount;
+}
+
+// One atom's neighbours in ascending order (touching partners, stored as ~j < 0, first): a
+// canonical order whatever the sweep order. Lists are short: an insertion sort in place costs
+// less than a std::sort call per atom; the result is the same.
+inline void sort_neighbours(int *js, int n)
+{
+  if (n > 32) {
+    std::sort(js,js+n);
+    return;
+  }
+  for (int a = 1; a < n; a++) {
+    const int v = js[a];
+    int b = a;
+    for (; b > 0 && js[b-1] > v; b--) js[b] = js[b-1];
+    js[b] = v;
+  }
 }
 
 // 3. A big particle among thousands of small ones may exceed neigh_modify one: size the pages
@@ -220,8 +224,10 @@ struct Partners {
   double **history;
 };
 
-// 4. LIGGGHTS' pages, filled exactly as granular_bin_no_newton fills them: per owned atom its
+// 4. LIGGGHTS' pages, filled as granular_bin_no_newton fills them: per owned atom its
 //    neighbours and, with contact history, the touching partners' history (zeros for new ones).
+//    Each atom's chunk of the page is taken first (its size is the judge's count), the listed
+//    pairs go straight into the chunks, and then each chunk is sorted and its history copied.
 void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partners, const int *tag,
                 int nlocal, Error *error)
 {
@@ -250,33 +256,47 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
     dnum = listgranhistory->dnum;
   }
 
-  int inum = 0;
   ipage->reset();
+  for (int i = 0; i < nlocal; i++) {
+    int *neighptr = ipage->vget();
+    if (!neighptr) error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
+    ilist[i] = i;
+    firstneigh[i] = neighptr;
+    numneigh[i] = 0;  // the fill cursor below
+    ipage->vgot(st.count[i]);
+    if (ipage->status())
+      error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
+  }
+  list->inum = nlocal;
+
+  const spacetree::NeighbourSearch::ListedPairs &pairs = st.pairs;
+  const int *pi = pairs.first.data(), *pj = pairs.second.data();
+  for (size_t p = 0; p < pairs.size(); p++) {
+    const int i = pi[p];
+    firstneigh[i][numneigh[i]++] = pj[p];
+  }
+
   if (fix_history) {
     ipage_contact_flag->reset();
     dpage_contact_hist->reset();
   }
-
   for (int i = 0; i < nlocal; i++) {
-    const int n = st.first[i+1] - st.first[i];
-    const int *js = st.neighbours.data() + st.first[i];
-    int *neighptr = ipage->vget();
-    if (!neighptr) error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
-    int *contact_flag_ptr = NULL;
-    double *contact_hist_ptr = NULL;
-    if (fix_history) {
-      contact_flag_ptr = ipage_contact_flag->vget();
-      contact_hist_ptr = dpage_contact_hist->vget();
-      if (!contact_flag_ptr || !contact_hist_ptr)
-        error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
+    const int n = numneigh[i];
+    int *js = firstneigh[i];
+    sort_neighbours(js,n);
+    if (!fix_history) {
+      for (int k = 0; k < n && js[k] < 0; k++) js[k] = ~js[k];
+      continue;
     }
-
+    int *contact_flag_ptr = ipage_contact_flag->vget();
+    double *contact_hist_ptr = dpage_contact_hist->vget();
+    if (!contact_flag_ptr || !contact_hist_ptr)
+      error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
     int nn = 0;
     for (int k = 0; k < n; k++) {
       const bool touching = js[k] < 0;
       const int j = touching ? ~js[k] : js[k];
-      neighptr[k] = j;
-      if (!fix_history) continue;
+      js[k] = j;
       int m = npartner[i];
       if (touching)
         for (m = 0; m < npartner[i]; m++)
@@ -289,22 +309,11 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
         for (int d = 0; d < dnum; d++) contact_hist_ptr[nn++] = 0.0;
       }
     }
-
-    ilist[inum++] = i;
-    firstneigh[i] = neighptr;
-    numneigh[i] = n;
-    ipage->vgot(n);
-    if (ipage->status())
-      error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
-    if (fix_history) {
-      first_contact_flag[i] = contact_flag_ptr;
-      first_contact_hist[i] = contact_hist_ptr;
-      ipage_contact_flag->vgot(n);
-      dpage_contact_hist->vgot(nn);
-    }
+    first_contact_flag[i] = contact_flag_ptr;
+    first_contact_hist[i] = contact_hist_ptr;
+    ipage_contact_flag->vgot(n);
+    dpage_contact_hist->vgot(nn);
   }
-
-  list->inum = inum;
 }
 
 }
@@ -341,9 +350,12 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   const bool exact_cut = (cdf == 1.0 && 2.0*st.search.epsilon() == skin);
   const int exclude_ = exclude;
   using Verdict = spacetree::NeighbourSearch::Verdict;
-  auto judge = [&](int i, int j, double rsq) {
-    // own/own pairs once under the lower index, own/ghost pairs under the owned atom
-    const double radsum = (radius[i] + radius[j]) * cdf;
+  st.count.assign(nlocal,0);
+  int *count = st.count.data();
+  auto judge = [&](int i, int j, double rsq, double contact_radsum) {
+    // own/own pairs once under the lower index, own/ghost pairs under the owned atom; with
+    // contact_distance_factor 1 the tree's radius sum is radius[i] + radius[j]
+    const double radsum = exact_cut ? contact_radsum : (radius[i] + radius[j]) * cdf;
     if (!exact_cut) {
       const double delx = x[i][0] - x[j][0];
       const double dely = x[i][1] - x[j][1];
@@ -353,7 +365,8 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
       if (rsq > cutsq) return Verdict::Skip;
     }
     if (exclude_ && exclusion(i,j,type[i],type[j],mask,molecule)) return Verdict::Skip;
-    // touching pairs carry contact history: marked
+    // touching pairs carry contact history: marked; i (the lower index) owns the pair
+    count[i]++;
     return rsq < radsum*radsum ? Verdict::KeepMarked : Verdict::Keep;
   };
   // Ghost velocities exist only with `communicate ... vel yes`; without them the reluctant
@@ -368,7 +381,7 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   }
 
   // 2.-4.
-  const int maxcount = per_atom_arrays(st,nlocal);
+  const int maxcount = largest_count(st,nlocal);
   const int one = size_pages(list,maxcount,comm->nthreads);
   if (one) {
     oneatom = std::max(oneatom,one);  // contact history follows at its next exchange

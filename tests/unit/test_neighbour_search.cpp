@@ -109,6 +109,34 @@ TEST(NeighbourSearch, SkippedPairsAreNotListed) {
   EXPECT_GT(expected.size(), 10u);
 }
 
+TEST(NeighbourSearch, AJudgeWithFourParametersGetsTheRadiusSumOfEachPair) {
+  // The LIGGGHTS judge takes r_i + r_j from the search instead of its radius array: it must be
+  // the sum of exactly those two radii (either order adds alike), for every grid, and the
+  // listed pairs those of a three-parameter judge.
+  for (int grid = 0; grid < 2; ++grid) {
+    NeighbourSearch search;
+    search.setSkin(0.01);
+    if (grid) {
+      AdaptiveGridOptions o;
+      o.type = GridType::Reluctant;
+      search.useNewGrid(o);
+    }
+    const MovingSpheres c = cloud(21 + grid, 500);
+    NeighbourSearch::ListedPairs pairs;
+    std::size_t judged = 0;
+    search.findPairs(c.pos(), c.vel(), c.r.data(), c.size(), 400, 0.0,
+                     [&](int i, int j, double, double radiusSum) {
+                       ++judged;
+                       EXPECT_EQ(radiusSum, c.r[i] + c.r[j]) << i << " " << j;
+                       return NeighbourSearch::Verdict::Keep;
+                     },
+                     pairs);
+    EXPECT_EQ(listed(pairs, c, false), bruteForce(c, 0.01, 400));
+    EXPECT_EQ(judged, pairs.size());
+    EXPECT_GT(judged, 100u);
+  }
+}
+
 // The reluctant grid after findPairs is the grid of the explicit sequence a caller would write.
 TEST(NeighbourSearch, DrivesTheReluctantGridAsTheExplicitSequence) {
   const double skin = 0.01;

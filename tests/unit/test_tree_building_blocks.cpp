@@ -30,6 +30,52 @@ TEST(RadixSort, SortsLikeAStableSort) {
   }
 }
 
+TEST(RadixSort, SortsKeysVaryingInAnyBandOfBits) {
+  // Keys that agree outside a band (low, high bits of the band vary): every band width and
+  // position takes its own number of passes and digit width; the result is a stable sort.
+  std::mt19937_64 rng(11);
+  for (int low : {0, 5, 23, 40}) {
+    for (int width : {1, 11, 12, 13, 21, 24, 25, 37}) {
+      if (low + width > 64) continue;
+      const std::uint64_t band = (width == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << width) - 1) << low;
+      const std::uint64_t common = rng() & ~band;
+      std::vector<KeyedIndex> records, scratch;
+      for (int i = 0; i < 3000; ++i) records.push_back(KeyedIndex{common | (rng() & band), i});
+      std::vector<KeyedIndex> expected = records;
+      std::stable_sort(expected.begin(), expected.end(),
+                       [](const KeyedIndex& a, const KeyedIndex& b) { return a.key < b.key; });
+      radixSortByKey(records, scratch);
+      for (std::size_t s = 0; s < records.size(); ++s) {
+        ASSERT_EQ(records[s].key, expected[s].key) << "band " << low << "+" << width << " at " << s;
+        ASSERT_EQ(records[s].index, expected[s].index) << "not stable at " << s;
+      }
+    }
+  }
+}
+
+TEST(SortKeyPacking, KeepsTheOrderOfLevelVertexKeysAndRestoresThem) {
+  // The tree sorts particles on the compact key and reads levelVertexKey back: both must order
+  // (level, i, j, k) alike, for every depth, including indices at the bias and at 3^depth.
+  std::mt19937_64 rng(13);
+  for (int depth = 0; depth <= kMaxSpacetreeLevel; ++depth) {
+    const SortKeyPacking packing(depth);
+    EXPECT_LE(4 + 3 * packing.fieldBits, 64);
+    const std::int64_t top = kPowersOfThree[depth] + kVertexKeyBias - 1;
+    std::uniform_int_distribution<std::int64_t> index(-kVertexKeyBias, top);
+    std::uniform_int_distribution<int> level(0, depth);
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> keys;  // (compact, levelVertexKey)
+    for (int t = 0; t < 2000; ++t) {
+      const int l = level(rng);
+      const std::int64_t i = t == 0 ? top : index(rng), j = t == 1 ? -kVertexKeyBias : index(rng), k = index(rng);
+      const std::uint64_t compact = packing.toSortKey(l, i, j, k), wide = levelVertexKey(l, packVertexKey(i, j, k));
+      ASSERT_EQ(packing.fromSortKey(compact), wide) << "depth " << depth;
+      keys.emplace_back(compact, wide);
+    }
+    for (std::size_t a = 1; a < keys.size(); ++a)
+      ASSERT_EQ(keys[a - 1].first < keys[a].first, keys[a - 1].second < keys[a].second) << "depth " << depth;
+  }
+}
+
 TEST(VertexKeySet, InsertsAndErasesLikeAStdSet) {
   // Clustered keys (long probe chains) and random batches of removals, small (erased one by
   // one with backward shifts) and large (table rebuilt): membership and members as a std::set.

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "tree/AdaptiveGrid.h"
@@ -57,7 +58,8 @@ class NeighbourSearch {
   // The build: grid update, tree, sweep, refinement. judge(i, j, squaredDistance) gets every
   // pair (i < j, at least one of them active, i.e. < nActive) with
   //   |x_i - x_j|^2 <= ((r_i + r_j + skin) (1 + relativeTolerance))^2
-  // (tolerance 0: bit for bit LIGGGHTS' granular cut-off) and returns whether to list it;
+  // (tolerance 0: bit for bit LIGGGHTS' granular cut-off) and returns whether to list it; a
+  // judge(i, j, squaredDistance, radiusSum) also gets radius[i] + radius[j] (the same sum);
   // the listed pairs go to `pairs` (cleared first). v may be nullptr (the reluctant grid then
   // treats every close pair as approaching). Throws std::invalid_argument for non-finite
   // positions or radii, or negative radii.
@@ -90,9 +92,13 @@ void NeighbourSearch::findPairs(const double (*x)[3], const double (*v)[3], cons
   buildTree(x, v, radius, n, nActive);
   pairs.clear();
   tree_.forEachPairWithin(
-      [&](int a, int b, double squaredDistance) {
+      [&](int a, int b, double squaredDistance, double radiusSum) {
         const int i = a < b ? a : b, j = a < b ? b : a;
-        const Verdict verdict = judge(i, j, squaredDistance);
+        Verdict verdict;
+        if constexpr (std::is_invocable_v<Judge&, int, int, double, double>)
+          verdict = judge(i, j, squaredDistance, radiusSum);
+        else
+          verdict = judge(i, j, squaredDistance);
         if (verdict == Verdict::Skip) return;
         pairs.first.push_back(i);
         pairs.second.push_back(verdict == Verdict::KeepMarked ? ~j : j);

@@ -3,6 +3,7 @@
 // skips the digit positions in which all keys agree.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -14,27 +15,36 @@ struct KeyedIndex {
   std::int32_t index;
 };
 
-// Sorts `records` by key; equal keys keep their order. `scratch` is resized as needed.
+// Sorts `records` by key; equal keys keep their order. `scratch` is resized as needed. Only the
+// bits in which the keys differ are sorted on, in as few passes of at most 12 bits as they
+// need (keys varying in 21 bits: two passes), each pass skipped where all keys agree.
 inline void radixSortByKey(std::vector<KeyedIndex>& records, std::vector<KeyedIndex>& scratch) {
-  constexpr int kDigitBits = 11;
-  constexpr std::size_t kBuckets = std::size_t(1) << kDigitBits;
+  constexpr int kMaxDigitBits = 12;
   const std::size_t n = records.size();
   if (n < 2) return;
   std::uint64_t varying = 0;
   for (const KeyedIndex& r : records) varying |= r.key ^ records[0].key;
+  if (varying == 0) return;
+  int low = 0, high = 63;
+  while (!((varying >> low) & 1)) ++low;
+  while (!((varying >> high) & 1)) --high;
+  const int bits = high - low + 1;
+  const int passes = (bits + kMaxDigitBits - 1) / kMaxDigitBits;
+  const int digitBits = (bits + passes - 1) / passes;
+  const std::uint64_t mask = (std::uint64_t(1) << digitBits) - 1;
   scratch.resize(n);
-  std::array<std::size_t, kBuckets> offset;
-  for (int shift = 0; shift < 64 && (varying >> shift) != 0; shift += kDigitBits) {
-    if (((varying >> shift) & (kBuckets - 1)) == 0) continue;  // all keys share this digit
-    offset.fill(0);
-    for (const KeyedIndex& r : records) ++offset[(r.key >> shift) & (kBuckets - 1)];
-    std::size_t sum = 0;
-    for (std::size_t& o : offset) {
-      const std::size_t count = o;
-      o = sum;
+  std::array<std::uint32_t, std::size_t(1) << kMaxDigitBits> offset;
+  for (int shift = low; shift <= high; shift += digitBits) {
+    if (((varying >> shift) & mask) == 0) continue;  // all keys share this digit
+    std::fill(offset.begin(), offset.begin() + (mask + 1), 0u);
+    for (const KeyedIndex& r : records) ++offset[(r.key >> shift) & mask];
+    std::uint32_t sum = 0;
+    for (std::size_t d = 0; d <= mask; ++d) {
+      const std::uint32_t count = offset[d];
+      offset[d] = sum;
       sum += count;
     }
-    for (const KeyedIndex& r : records) scratch[offset[(r.key >> shift) & (kBuckets - 1)]++] = r;
+    for (const KeyedIndex& r : records) scratch[offset[(r.key >> shift) & mask]++] = r;
     records.swap(scratch);
   }
 }

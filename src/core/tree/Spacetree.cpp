@@ -137,6 +137,7 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
   double lastRadius = -1.0;  // radii repeat (monodisperse species): skip the log
   int lastLevel = 0;
   const int levelCount = int(levels_.size());
+  const SortKeyPacking packing(levelCount - 1);
   for (int i = 0; i < n; ++i) {
     // A caller's level may be coarser than the finest admissible one, never finer. Mesh sizes
     // fall with the level, so a level whose mesh still fits the particle is at or above the
@@ -157,9 +158,10 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
     const std::int64_t vi = nearestVertexCoordinate(x[i][0], origin_[0], inv);
     const std::int64_t vj = nearestVertexCoordinate(x[i][1], origin_[1], inv);
     const std::int64_t vk = nearestVertexCoordinate(x[i][2], origin_[2], inv);
-    sortKeys_[i] = KeyedIndex{levelVertexKey(l, packVertexKey(vi, vj, vk)), i};
+    sortKeys_[i] = KeyedIndex{packing.toSortKey(l, vi, vj, vk), i};
   }
   radixSortByKey(sortKeys_, sortScratch_);
+  for (KeyedIndex& r : sortKeys_) r.key = packing.fromSortKey(r.key);
   sx_.resize(std::size_t(n));
   sy_.resize(std::size_t(n));
   sz_.resize(std::size_t(n));

@@ -33,6 +33,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "tree/GridGeometry.h"
@@ -78,7 +79,7 @@ class Spacetree {
   // Like forEachCandidatePair, but only pairs with
   //   dx^2 + dy^2 + dz^2 <= ((r_i + r_j + 2 eps) (1 + relativeTolerance))^2
   // reach the visitor, as visit(i, j, squaredDistance), evaluated in that order on the tree's own sorted copies (streaming
-  // access). With tolerance 0 this is bit for bit the cut-off of LIGGGHTS' granular builders
+  // access); a visitor taking visit(i, j, squaredDistance, radiusSum) also gets r_i + r_j. With tolerance 0 this is bit for bit the cut-off of LIGGGHTS' granular builders
   // (contact_distance_factor 1); a small tolerance makes it a superset of other roundings.
   template <class Visitor>
   void forEachPairWithin(Visitor&& visit, double relativeTolerance = 0.0) {
@@ -167,9 +168,17 @@ class Spacetree {
       return dx * dx + dy * dy + dz * dz;
     }
     double cut(std::int32_t a, std::int32_t b) const { return (tree.sr_[a] + tree.sr_[b] + halo) * scale; }
+    // The visitor gets (i, j, squaredDistance), or with a fourth parameter also r_i + r_j as
+    // the tree holds them (the caller's radii: no look-up of its arrays per pair).
+    void emit(std::int32_t a, std::int32_t b, double d2) const {
+      if constexpr (std::is_invocable_v<Visit&, int, int, double, double>)
+        visit(tree.sortedId_[a], tree.sortedId_[b], d2, tree.sr_[a] + tree.sr_[b]);
+      else
+        visit(tree.sortedId_[a], tree.sortedId_[b], d2);
+    }
     void operator()(std::int32_t a, std::int32_t b) const {
       const double d2 = distanceSquared(a, b), c = cut(a, b);
-      if (d2 <= c * c) visit(tree.sortedId_[a], tree.sortedId_[b], d2);
+      if (d2 <= c * c) emit(a, b, d2);
     }
     void range(std::int32_t a, std::int32_t first, std::int32_t last, bool aActive) const {
       constexpr std::int32_t kChunk = 32;
@@ -184,7 +193,7 @@ class Spacetree {
         }
         for (std::int32_t t = 0; t < count; ++t) {
           const std::int32_t b = hits[t];
-          if (aActive || tree.isActive(b)) visit(tree.sortedId_[a], tree.sortedId_[b], distanceSquared(a, b));
+          if (aActive || tree.isActive(b)) emit(a, b, distanceSquared(a, b));
         }
       }
     }
@@ -204,8 +213,9 @@ class Spacetree {
   std::uint64_t linkLevels(int m, int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons,
                            std::uint64_t& tests);
   // The vertices of `level` with index in [lo, hi] per axis, slice by slice and row by row:
-  // sliceRange(i, jLo, jHi) and rowRange(i, j, kLo, kHi) may narrow the j range of a slice or
-  // the k range of a row (false: skip it); then f(slot) for each vertex. Only occupied slices
+  // sliceRange(i, jLo, jHi) and rowRange(i, j, rowVertices, kLo, kHi) may narrow the j range
+  // of a slice or the k range of a row of rowVertices vertices (false: skip it); then f(slot)
+  // for each vertex. Only occupied slices
   // and rows are visited.
   template <class SliceRange, class RowRange, class F>
   void forEachVertexIn(const Level& level, const std::int64_t lo[3], const std::int64_t hi[3],
@@ -224,6 +234,8 @@ class Spacetree {
   static std::int64_t indexAbove(double t) { return std::int64_t(t) + 1; }
   // Relative margin of that bound over the cut-off (round-off of the x difference).
   static constexpr double kPruneMargin = 1e-9;
+  // Rows of at most this many vertices are scanned whole (up to the look-up's k range).
+  static constexpr std::int32_t kShortRow = 8;
   int hostLevel(double required) const;
   // Checks positions and radii; returns the bounding box and the radius range.
   static void validate(const double (*x)[3], const double* radius, int n, double lo[3],

@@ -173,7 +173,7 @@ void Spacetree::forEachVertexIn(const Level& level, const std::int64_t lo[3], co
       while (row != rowEnd && row->j < j0) ++row;
     for (; row != rowEnd && row->j <= j1; ++row) {
       std::int64_t k0 = lo[2], k1 = hi[2];
-      if (!rowRange(std::int64_t(slice->i), std::int64_t(row->j), k0, k1)) continue;
+      if (!rowRange(std::int64_t(slice->i), std::int64_t(row->j), row->end - row->begin, k0, k1)) continue;
       if (k1 < 0) continue;  // vertex indices are >= 0
       // The keys of one row differ only in k: compare them directly.
       const std::uint64_t base = keys[row->begin] & ~kVertexKeyMask;
@@ -224,8 +224,10 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
     candidatePairs += std::uint64_t(smallEnd - smallBegin) + std::uint64_t(v.end - v.bigBegin);
   };
   // The fine vertices within r_q + linkReach of q's centre: rows whose (i, j) lie beyond it
-  // are skipped with the partial sums linksTo computes (so no vertex it would accept), the k
-  // range of the others from the remaining reach (padded by a vertex), then linksTo decides.
+  // are skipped with the partial sums linksTo computes (so no vertex it would accept); a long
+  // row narrows its k range from the remaining reach (padded by a vertex), a short one (a
+  // dilute level) is scanned over the ball's box; then the distance of linksTo decides, on
+  // the vertex coordinates the row and the key give (the vertex itself is read when linked).
   auto linkBall = [&](std::int32_t q, const std::int64_t near[2][3]) {
     const double reach = sr_[q] + linkReach, reach2 = reach * reach;
     const double c[3] = {sx_[q], sy_[q], sz_[q]};
@@ -234,7 +236,7 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
       lo[d] = std::max(near[0][d], indexBelow((c[d] - reach - origin_[d]) * inverse));
       hi[d] = std::min(near[1][d], indexAbove((c[d] + reach - origin_[d]) * inverse));
     }
-    double dx2 = 0.0;  // of the current slice
+    double dx2 = 0.0, dxy2 = 0.0;  // of the current slice and row
     forEachVertexIn(
         fine, lo, hi,
         [&](std::int64_t i, std::int64_t& j0, std::int64_t& j1) {
@@ -247,21 +249,22 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
           j1 = std::min(j1, indexAbove((c[1] + w - origin_[1]) * inverse));
           return j0 <= j1;
         },
-        [&](std::int64_t, std::int64_t j, std::int64_t& k0, std::int64_t& k1) {
+        [&](std::int64_t, std::int64_t j, std::int32_t rowVertices, std::int64_t& k0, std::int64_t& k1) {
           const double dy = c[1] - (origin_[1] + double(j) * h);
-          const double rest = reach2 - (dx2 + dy * dy);
+          dxy2 = dx2 + dy * dy;
+          const double rest = reach2 - dxy2;
           if (!(rest > 0.0)) return false;
+          if (rowVertices <= kShortRow) return true;
           const double w = std::sqrt(rest);
           k0 = std::max(k0, indexBelow((c[2] - w - origin_[2]) * inverse));
           k1 = std::min(k1, indexAbove((c[2] + w - origin_[2]) * inverse));
           return k0 <= k1;
         },
         [&](std::int32_t w) {
-          const Vertex& v = fine.vertices[std::size_t(w)];
           ++linkTests;
-          if (linksTo(q, origin_[0] + v.index.i * h, origin_[1] + v.index.j * h, origin_[2] + v.index.k * h,
-                      linkReach))
-            linked(v, q);
+          const double k = double(std::int64_t(fine.keys[std::size_t(w)] & kVertexKeyMask) - kVertexKeyBias);
+          const double dz = c[2] - (origin_[2] + k * h);
+          if (dxy2 + dz * dz < reach2) linked(fine.vertices[std::size_t(w)], q);
         });
   };
 
@@ -280,7 +283,7 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
     }
   };
   auto all2 = [](std::int64_t, std::int64_t&, std::int64_t&) { return true; };
-  auto all3 = [](std::int64_t, std::int64_t, std::int64_t&, std::int64_t&) { return true; };
+  auto all3 = [](std::int64_t, std::int64_t, std::int32_t, std::int64_t&, std::int64_t&) { return true; };
 
   if (fine.vertices.size() < stats_.levels[m].realParticles) {
     // Few fine vertices (a level holding a handful of the smallest particles): each one looks

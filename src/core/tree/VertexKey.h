@@ -36,4 +36,30 @@ inline std::uint64_t levelVertexKey(int level, std::uint64_t vertexKey) {
   return (std::uint64_t(level) << kLevelShift) | vertexKey;
 }
 
+// The same order in fewer bits, for sorting: (level, i, j, k) packed with `fieldBits` bits per
+// biased index, just enough for the indices of a tree of `depth` levels (up to 3^depth +
+// bias), so the radix sort passes over fewer digits. fromSortKey gives the levelVertexKey.
+struct SortKeyPacking {
+  int fieldBits = kVertexKeyBits;
+  explicit SortKeyPacking(int depth) {
+    std::int64_t largest = 1;
+    for (int l = 0; l < depth; ++l) largest *= 3;
+    largest += 2 * kVertexKeyBias + 1;
+    fieldBits = 1;
+    while ((std::int64_t(1) << fieldBits) <= largest) ++fieldBits;
+  }
+  std::uint64_t toSortKey(int level, std::int64_t i, std::int64_t j, std::int64_t k) const {
+    return (((((std::uint64_t(level) << fieldBits) | std::uint64_t(i + kVertexKeyBias)) << fieldBits) |
+             std::uint64_t(j + kVertexKeyBias))
+            << fieldBits) |
+           std::uint64_t(k + kVertexKeyBias);
+  }
+  std::uint64_t fromSortKey(std::uint64_t key) const {
+    const std::uint64_t field = (std::uint64_t(1) << fieldBits) - 1;
+    const std::uint64_t k = key & field, j = (key >> fieldBits) & field, i = (key >> (2 * fieldBits)) & field;
+    const std::uint64_t level = key >> (3 * fieldBits);
+    return (level << kLevelShift) | (i << (2 * kVertexKeyBits)) | (j << kVertexKeyBits) | k;
+  }
+};
+
 }  // namespace spacetree
