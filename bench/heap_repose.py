@@ -6,7 +6,7 @@ Decks inputs/heap/in.heap_grains (pair_style trimesh, 40-triangle dented grains,
 tangential history, materials E 1e5 Pa, nu 0.3, e 0.3, mu 0.5; halo 0.1 mm) and
 inputs/heap/in.heap_spheres (pair gran hertz with tangential history, the same materials, spheres
 of the grains' volume-equivalent radius, no rolling friction): a side x side x side block
-(spacing 6.4 mm; 10 = 1000 grains by default) released just above a 0.2 m square floor
+(spacing 6.4 mm; 10 = 1000 grains by default) released just above a 0.4 m square floor
 collapses into a heap; each deck runs in chunks of `--chunk` steps of `--dt` until the kinetic
 energy at a chunk end is below 1e-9 of the largest one at a chunk end (or `--chunks` chunks).
 
@@ -55,7 +55,7 @@ KINDS = {"grains": ("in.heap_grains", {}), "spheres": ("in.heap_spheres", {}),
 
 
 def floor_triangles():
-    x0, y0, z0, x1, y1, z1 = -0.1, -0.1, -0.004, 0.1, 0.1, 0.0
+    x0, y0, z0, x1, y1, z1 = -0.2, -0.2, -0.004, 0.2, 0.2, 0.0
     v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
          (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
     quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (2, 3, 7, 6), (1, 2, 6, 5), (3, 0, 4, 7)]
