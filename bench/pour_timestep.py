@@ -48,6 +48,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DECK = os.path.join(ROOT, "inputs", "pour", "in.pour")
+SETTINGS = os.path.join(ROOT, "inputs", "pour", "pour_settings.in")
 HALO = 1e-4          # pair_style trimesh eps of the deck
 Z_FLOOR = 0.0        # top face of the floor slab
 
@@ -61,11 +62,12 @@ def run(a, name, dt, adapt, every):
     work = os.path.join(a.work, name)
     hist = os.path.join(work, "pour_history.txt")
     done = os.path.join(work, "done")
-    if os.path.exists(done) or os.path.exists(os.path.join(work, "unstable")) or a.analyse:
+    if any(os.path.exists(os.path.join(work, f)) for f in ("done", "unstable", "stopped")) or a.analyse:
         return hist
     os.makedirs(work, exist_ok=True)
     deck = os.path.join(work, "in.pour")     # a copy: LIGGGHTS reads its input while it runs
     shutil.copyfile(DECK, deck)
+    shutil.copyfile(SETTINGS, os.path.join(work, "pour_settings.in"))
     make = [sys.executable, os.path.join(ROOT, "inputs", "pour", "make_pour.py"), work]
     subprocess.run(make, check=True)
     chunk = max(100, int(round(0.01 / dt))) if adapt else int(math.ceil(a.time / dt - 1e-9))
@@ -78,8 +80,13 @@ def run(a, name, dt, adapt, every):
         cmd += ["-var", "adapt", "fix dtv all adapt/timestep " + adapt + " file " + os.path.join(work, "dt.txt"),
                 "-var", "tend", "%.9g" % a.time]
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    p = subprocess.run(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                       errors="replace", env=env)
+    try:
+        p = subprocess.run(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           errors="replace", env=env, timeout=a.timeout)
+    except subprocess.TimeoutExpired:
+        # too slow to finish (e.g. a step collapsed to its floor): kept as how far it got
+        open(os.path.join(work, "stopped"), "w").write("stopped after %g s of wall time\n" % a.timeout)
+        return hist
     if p.returncode != 0:
         if "Lost atoms" in p.stdout:
             # unstable: a grain was shot out of the box (kept as a result, never "as accurate")
@@ -159,6 +166,7 @@ def main():
     ap.add_argument("--work", default="/tmp/pour_timestep")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "pour_timestep"))
     ap.add_argument("--analyse", action="store_true", help="run nothing, analyse what is there")
+    ap.add_argument("--timeout", type=float, default=None, help="stop a run after this many seconds of wall time")
     ap.add_argument("--floor", default=None, help="the run that gives the noise floor (default fixed_<1.25 ref>)")
     a = ap.parse_args()
     adaptive = [s.split("=", 1) for s in (a.adaptive or DEFAULT_ADAPTIVE)]
@@ -169,7 +177,7 @@ def main():
 
     hists = {}
     for name, dt, adapt in runs:
-        if only and name not in only and not (name == "ref"):
+        if only and name not in only:
             continue
         every = 1 if adapt else max(1, int(round(1e-5 / dt)))
         path = run(a, name, dt, adapt, every)
@@ -210,7 +218,8 @@ def main():
             continue
         ad = {m: float(r[m]) for m in METRICS}
         match = next((f for f in fixed_rows if as_accurate({m: float(f[m]) for m in METRICS}, ad, floor)), None)
-        dtc = float(r["args"].split("dtcontact")[1].split()[0]) if "dtcontact" in r["args"] else None
+        dtc = r["args"].split("dtcontact")[1].split()[0] if "dtcontact" in r["args"] else None
+        dtc = float(dtc) if dtc not in (None, "stable", "none") else None
         summary.append(dict(adaptive=r["name"], args=r["args"], adaptive_steps=r["steps"],
                             ke_err=r["ke_err"], z_err=r["z_err"], pen_err=r["pen_err"],
                             floor_ke=floor["ke_err"], floor_z=floor["z_err"], floor_pen=floor["pen_err"],
