@@ -181,9 +181,10 @@ class Spacetree {
     Visit& visit;
     double halo, scale;
     bool allActive;  // no inactive particle: no activity test per hit
-    static constexpr std::int32_t kBlock = 1024;
+    static constexpr std::int32_t kBlock = 1024, kShortRun = 4;
     std::int32_t queued = 0;
-    std::int32_t first[kBlock], second[kBlock], hit[kBlock];  // not initialised: filled before read
+    // not initialised: filled before read; kShortRun slots of slack for the short-run writes
+    std::int32_t first[kBlock + kShortRun], second[kBlock + kShortRun], hit[kBlock + kShortRun];
 
     WithinVisitor(const Spacetree& t, Visit& v, double h, double s)
         : tree(t), visit(v), halo(h), scale(s), allActive(t.nActive_ >= t.particleCount()) {}
@@ -208,6 +209,18 @@ class Spacetree {
       if (++queued == kBlock) flush();
     }
     void range(std::int32_t a, std::int32_t from, std::int32_t to, bool) {
+      // A short run (a dense level: the 0-3 particles of a forward row's k - 1 .. k + 1) is
+      // written as kShortRun slots whatever its length, and counted by its length: no branch
+      // on the length, which varies from run to run.
+      if (to - from <= kShortRun) {
+        for (std::int32_t t = 0; t < kShortRun; ++t) {
+          first[queued + t] = a;
+          second[queued + t] = from + t;
+        }
+        queued += std::max(to - from, 0);
+        if (queued >= kBlock) flush();
+        return;
+      }
       while (from < to) {
         const std::int32_t take = std::min(to - from, kBlock - queued);
         for (std::int32_t t = 0; t < take; ++t) {
