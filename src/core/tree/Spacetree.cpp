@@ -214,15 +214,16 @@ void Spacetree::placeSorted(const std::vector<Record>& sorted, const SortKeyPack
     for (e = s; e < n && packing.levelOf(sorted[std::size_t(e)].key) == l;) {
       const auto sortKey = sorted[std::size_t(e)].key;
       const std::uint64_t key = packing.fromSortKey(sortKey);
-      Vertex v;
-      v.begin = e;
-      v.active = 0;
-      while (e < n && sorted[std::size_t(e)].key == sortKey) {
-        if (sorted[std::size_t(e)].index < nActive_) ++v.active;
-        ++e;
-      }
+      // Filled in place (a record built on the stack and copied in reads back fields just
+      // written piecewise: a stalled store-to-load forward per vertex).
+      const std::int32_t slot = std::int32_t(level.vertices.size()), begin = e;
+      std::int32_t active = 0;
+      for (; e < n && sorted[std::size_t(e)].key == sortKey; ++e) active += sorted[std::size_t(e)].index < nActive_ ? 1 : 0;
+      Vertex& v = level.vertices.emplace_back();
+      v.begin = begin;
       v.end = e;
-      v.bigBegin = v.end;
+      v.active = active;
+      v.bigBegin = e;
       v.box = -1;
       if (v.end - v.begin >= kSweepAndPruneMinParticles) {
         v.bigBegin = orderCrowdedVertex(v.begin, v.end, x, radius);
@@ -233,7 +234,6 @@ void Spacetree::placeSorted(const std::vector<Record>& sorted, const SortKeyPack
       }
       // Rows of equal (i, j), slices of equal i.
       const VertexIndex index = unpackVertexKey(key);
-      const std::int32_t slot = std::int32_t(level.vertices.size());
       const VertexIndex previous = slot > 0 ? indexOf(level, std::size_t(slot - 1)) : VertexIndex{-1, -1, -1};
       const bool newSlice = slot == 0 || index.i != previous.i;
       if (newSlice || index.j != previous.j) {
@@ -241,7 +241,6 @@ void Spacetree::placeSorted(const std::vector<Record>& sorted, const SortKeyPack
         level.rows.push_back(Row{index.j, slot, slot});
       }
       level.rows.back().end = slot + 1;
-      level.vertices.push_back(v);
       level.keys.push_back(key & ((std::uint64_t(1) << kLevelShift) - 1));
     }
     level.slices.push_back(Slice{0, std::int32_t(level.rows.size())});  // past the end
