@@ -200,8 +200,9 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
   const Level& coarse = levels_[m];
   const Level& fine = levels_[l];
   const double h = fine.meshSize;
-  // Virtual-link radius beyond the coarse particle's own radius (paper: r + 2 eps + h sqrt(d)).
-  const double linkReach = 2.0 * options_.epsilon + std::sqrt(3.0) * h;
+  // Virtual-link radius beyond the coarse particle's own radius, before the relative margin
+  // (linkRadius).
+  const double linkReach = 2.0 * options_.epsilon + kLinkMeshFactor * h;
   // A fine vertex takes links only from the 3x3x3 coarse vertices around its nearest coarse
   // vertex: fine index n has the nearest coarse index (n + half) / s.
   const std::int64_t s = kPowersOfThree[l - m], half = (s - 1) / 2;
@@ -232,7 +233,7 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
   // dilute level) is scanned over the ball's box; then the distance of linksTo decides, on
   // the vertex coordinates the row and the key give (the vertex itself is read when linked).
   auto linkBall = [&](std::int32_t q, const std::int64_t near[2][3]) {
-    const double reach = sr_[q] + linkReach, reach2 = reach * reach;
+    const double reach = linkRadius(sr_[q], h), reach2 = reach * reach;
     const double c[3] = {sx_[q], sy_[q], sz_[q]};
     std::int64_t lo[3], hi[3];
     for (int d = 0; d < 3; ++d) {
