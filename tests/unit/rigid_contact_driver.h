@@ -82,7 +82,7 @@ class RigidContactDriver {
         for (std::size_t k = 0; k < contacts_.size(); ++k) {
           const ContactPoint& c = contacts_[k];
           const contact_model::Contact con =
-              contact_model::makeContact(a, b, c.point, c.normal, c.penetration);
+              contact_model::makeContact(a, b, c.point, c.normal, c.weight * c.penetration);
           const Eigen::Vector3d force =
               model_.evaluate(con, slots ? slots + k * std::size_t(stride) : nullptr, dt).forceOnFirst;
           dynamics::applyContactForce(a, b, c.point, force, loads[i], loads[j]);

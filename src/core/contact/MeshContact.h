@@ -151,6 +151,10 @@ struct ContactPoint {
   int firstTriangle = -1;    // triangles of the first contact merged into this one
   int secondTriangle = -1;
   int mergedCount = 1;       // raw contacts averaged into this one
+  // Contact points this one stands for (ContactMerger): the force laws act on the penetration
+  // weight * penetration. 1 for a raw contact and for copies of one contact found on several
+  // triangle pairs; up to the number of merged raw contacts when they lie apart.
+  double weight = 1.0;
 };
 
 struct MeshContactStatistics {
