@@ -42,8 +42,8 @@ PairSet treePairs(Spacetree& tree, const Cloud& c) {
   return pairs;
 }
 
-// Vertices of level l hosting a particle, and how many of them lie within r + 2 eps + h sqrt(3)
-// of particle q (the paper's virtual links of q on that level).
+// Vertices of level l hosting a particle, and how many of them lie within
+// (r + 2 eps + h (1 + sqrt(3)) / 2) (1 + 1e-9) of particle q (its virtual links on that level).
 std::uint64_t linksOf(const Spacetree& tree, const Cloud& c, int q, int l, double eps) {
   std::set<std::array<std::int64_t, 3>> vertices;
   const double h = tree.meshSize(l);
@@ -53,7 +53,7 @@ std::uint64_t linksOf(const Spacetree& tree, const Cloud& c, int q, int l, doubl
       for (int d = 0; d < 3; ++d) v[d] = std::int64_t((c.x[i][d] - tree.origin()[d]) / h + 0.5);
       vertices.insert(v);
     }
-  const double reach = c.r[q] + 2.0 * eps + std::sqrt(3.0) * h;
+  const double reach = (c.r[q] + 2.0 * eps + 0.5 * (1.0 + std::sqrt(3.0)) * h) * (1.0 + 1e-9);
   std::uint64_t links = 0;
   for (const auto& v : vertices) {
     double d2 = 0.0;

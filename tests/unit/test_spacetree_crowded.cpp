@@ -133,7 +133,7 @@ Scene randomScene(unsigned seed, int coarsestLevel) {
       s.add(ax + side * (kRMax + kRMax + 2.0 * kEps), vy, vz, kRMax, 1 + k % 4 / 2);
     } else {
       s.add(vx, vy, vz, kRMin, fine);
-      const double linkReach = 2.0 * kEps + std::sqrt(3.0) * h;
+      const double linkReach = 2.0 * kEps + 0.5 * (1.0 + std::sqrt(3.0)) * h;
       s.add(vx + side * (kRMax + linkReach) * (1.0 - 1e-12), vy, vz, kRMax, 1 + k % 4 / 2);
     }
   }
@@ -169,8 +169,8 @@ PairDistances bruteForce(const Scene& s, double scale) {
   return pairs;
 }
 
-// Virtual links as the paper defines them (vertex v of level l, coarser particle q within
-// r_q + 2 eps + sqrt(3) h of it), limited to the 3x3x3 neighbourhood of v's nearest vertex on
+// Virtual links as the tree defines them (vertex v of level l, coarser particle q within
+// (r_q + 2 eps + h (1 + sqrt(3)) / 2) (1 + 1e-9) of it), limited to the 3x3x3 neighbourhood of v's nearest vertex on
 // q's level, where the tree looks for them.
 std::vector<std::uint64_t> bruteForceLinks(const Scene& s, const Spacetree& tree) {
   const int nLevels = tree.levelCount();
@@ -186,7 +186,7 @@ std::vector<std::uint64_t> bruteForceLinks(const Scene& s, const Spacetree& tree
   std::vector<std::uint64_t> links(std::size_t(nLevels), 0);
   for (int l = 0; l < nLevels; ++l) {
     const double h = tree.meshSize(l);
-    const double linkReach = 2.0 * kEps + std::sqrt(3.0) * h;
+    const double linkReach = 2.0 * kEps + 0.5 * (1.0 + std::sqrt(3.0)) * h;
     for (const auto& v : vertices[std::size_t(l)]) {
       const double vx = o[0] + v[0] * h, vy = o[1] + v[1] * h, vz = o[2] + v[2] * h;
       for (int q = 0; q < s.size(); ++q) {
@@ -198,7 +198,7 @@ std::vector<std::uint64_t> bruteForceLinks(const Scene& s, const Spacetree& tree
         for (int d = 0; d < 3; ++d) near = near && std::llabs(u[d] - (v[d] + half) / step) <= 1;
         if (!near) continue;
         const double dx = s.x[q][0] - vx, dy = s.x[q][1] - vy, dz = s.x[q][2] - vz;
-        const double reach = s.r[q] + linkReach;
+        const double reach = (s.r[q] + linkReach) * (1.0 + 1e-9);
         if (dx * dx + dy * dy + dz * dz < reach * reach) ++links[std::size_t(l)];
       }
     }

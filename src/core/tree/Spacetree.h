@@ -5,8 +5,10 @@
 // the level of its smaller particle:
 //   - same level: a vertex against itself and its 13 "forward" neighbours (symmetry);
 //   - across levels: a vertex against its virtual links, i.e. the coarser real particles whose
-//     centre lies within r + 2 eps + h sqrt(3) of the vertex (the paper's projection radius)
-//     and whose vertex is one of the 3x3x3 around the finer vertex's nearest coarse vertex.
+//     centre lies within linkRadius(r, h) of the vertex (r + 2 eps + h (1 + sqrt(3)) / 2: the
+//     farthest a partner on that vertex can reach, tighter than the paper's projection radius
+//     r + 2 eps + h sqrt(3)) and whose vertex is one of the 3x3x3 around the finer vertex's
+//     nearest coarse vertex.
 // Levels are sparse: only vertices that host particles exist, so the memory is per particle,
 // not per domain volume. The tree is rebuilt from scratch by build(); drop (to the finest
 // admissible level) and lift (to a coarser one when a particle grows) happen there.
@@ -91,6 +93,14 @@ class Spacetree {
   int particleCount() const { return int(particleLevel_.size()); }  // of the last build
   int levelCount() const { return int(levels_.size()); }
   double meshSize(int level) const { return levels_[level].meshSize; }
+  // Virtual-link radius of a coarser particle of radius r on the vertices of a level of mesh
+  // size h: a particle p hosted there lies within h sqrt(3) / 2 of its (nearest) vertex and has
+  // r_p <= h / 2 - eps (h >= 2 (r_p + eps)), so a pair within the cut-off r + r_p + 2 eps has
+  // the vertex within r + eps + h (1 + sqrt(3)) / 2 of the coarse centre. One more eps and a
+  // relative margin cover the round-off of the vertex coordinates and the caller's tolerance.
+  double linkRadius(double r, double h) const {
+    return (r + 2.0 * options_.epsilon + kLinkMeshFactor * h) * (1.0 + kPruneMargin);
+  }
   double rootSize() const { return rootSize_; }
   const std::array<double, 3>& origin() const { return origin_; }
   // Mesh size a particle of this radius needs: h >= 2 (r + eps), with a relative safety margin
@@ -284,6 +294,8 @@ class Spacetree {
   static std::int64_t indexAbove(double t) { return std::int64_t(t) + 1; }
   // Relative margin of that bound over the cut-off (round-off of the x difference).
   static constexpr double kPruneMargin = 1e-9;
+  // (1 + sqrt(3)) / 2: a level's mesh sizes in the virtual-link radius (linkRadius).
+  static constexpr double kLinkMeshFactor = 1.3660254037844386;
   // Rows of at most this many vertices are scanned whole (up to the look-up's k range).
   static constexpr std::int32_t kShortRow = 8;
   int hostLevel(double required) const;
@@ -305,10 +317,11 @@ class Spacetree {
   // Orders the particles [begin, end) of one crowded vertex; returns its bigBegin.
   std::int32_t orderCrowdedVertex(std::int32_t begin, std::int32_t end, const double (*x)[3], const double* radius);
   bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
-  // Virtual link: coarse particle q lies within r_q + linkReach of the vertex at (vx, vy, vz).
+  // Virtual link: coarse particle q lies within linkRadius(r_q, h) = (r_q + linkReach)
+  // (1 + kPruneMargin) of the vertex at (vx, vy, vz).
   bool linksTo(std::int32_t q, double vx, double vy, double vz, double linkReach) const {
     const double dx = sx_[q] - vx, dy = sy_[q] - vy, dz = sz_[q] - vz;
-    const double reach = sr_[q] + linkReach;
+    const double reach = (sr_[q] + linkReach) * (1.0 + kPruneMargin);
     return dx * dx + dy * dy + dz * dz < reach * reach;
   }
   // The positions q in [first, last) that link to the vertex, into linkHits_ (branch-free: in

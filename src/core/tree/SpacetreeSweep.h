@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "tree/BranchlessSearch.h"
 #include "tree/Spacetree.h"
 
 namespace spacetree {
@@ -159,8 +160,8 @@ void Spacetree::forEachVertexIn(const Level& level, const std::int64_t lo[3], co
                                 SliceRange&& sliceRange, RowRange&& rowRange, F&& f) const {
   if (level.rows.empty()) return;
   const Slice* lastSlice = level.slices.data() + level.slices.size() - 1;  // past the end
-  const Slice* slice = std::partition_point(level.slices.data(), lastSlice,
-                                            [&](const Slice& t) { return t.i < lo[0]; });
+  const Slice* slice = branchlessPartitionPoint(level.slices.data(), lastSlice,
+                                                [&](const Slice& t) { return t.i < lo[0]; });
   const Row* rows = level.rows.data();
   const std::uint64_t* keys = level.keys.data();
   for (; slice != lastSlice && slice->i <= hi[0]; ++slice) {
@@ -169,7 +170,7 @@ void Spacetree::forEachVertexIn(const Level& level, const std::int64_t lo[3], co
     const Row* row = rows + slice->firstRow;
     const Row* rowEnd = rows + slice[1].firstRow;
     if (rowEnd - row > 8)
-      row = std::partition_point(row, rowEnd, [&](const Row& r) { return r.j < j0; });
+      row = branchlessPartitionPoint(row, rowEnd, [&](const Row& r) { return r.j < j0; });
     else
       while (row != rowEnd && row->j < j0) ++row;
     for (; row != rowEnd && row->j <= j1; ++row) {
@@ -182,7 +183,8 @@ void Spacetree::forEachVertexIn(const Level& level, const std::int64_t lo[3], co
       const std::uint64_t last = base + std::uint64_t(k1 + kVertexKeyBias);
       std::int32_t w = row->begin;
       if (row->end - w > 8)
-        w = std::int32_t(std::lower_bound(keys + w, keys + row->end, first) - keys);
+        w = std::int32_t(
+            branchlessPartitionPoint(keys + w, keys + row->end, [&](std::uint64_t key) { return key < first; }) - keys);
       else
         while (w < row->end && keys[w] < first) ++w;
       for (; w < row->end && keys[w] <= last; ++w) f(w);
@@ -198,8 +200,9 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
   const Level& coarse = levels_[m];
   const Level& fine = levels_[l];
   const double h = fine.meshSize;
-  // Virtual-link radius beyond the coarse particle's own radius (paper: r + 2 eps + h sqrt(d)).
-  const double linkReach = 2.0 * options_.epsilon + std::sqrt(3.0) * h;
+  // Virtual-link radius beyond the coarse particle's own radius, before the relative margin
+  // (linkRadius).
+  const double linkReach = 2.0 * options_.epsilon + kLinkMeshFactor * h;
   // A fine vertex takes links only from the 3x3x3 coarse vertices around its nearest coarse
   // vertex: fine index n has the nearest coarse index (n + half) / s.
   const std::int64_t s = kPowersOfThree[l - m], half = (s - 1) / 2;
@@ -230,7 +233,7 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
   // dilute level) is scanned over the ball's box; then the distance of linksTo decides, on
   // the vertex coordinates the row and the key give (the vertex itself is read when linked).
   auto linkBall = [&](std::int32_t q, const std::int64_t near[2][3]) {
-    const double reach = sr_[q] + linkReach, reach2 = reach * reach;
+    const double reach = linkRadius(sr_[q], h), reach2 = reach * reach;
     const double c[3] = {sx_[q], sy_[q], sz_[q]};
     std::int64_t lo[3], hi[3];
     for (int d = 0; d < 3; ++d) {
