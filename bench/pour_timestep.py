@@ -4,7 +4,7 @@ with fixed time steps and with `fix adapt/timestep`: steps needed for the same s
 the same accuracy.
 
   /usr/bin/python3 bench/pour_timestep.py [--exe build/liggghts-spacetree] [--time 0.15]
-        [--ref 1e-6] [--fixed 2e-6,3e-6,...] [--adaptive NAME=ARGS ...] [--only NAME,...]
+        [--ref 2e-6] [--fixed 2.5e-6,8e-6,...] [--adaptive NAME=ARGS ...] [--only NAME,...]
         [--work /tmp/pour_timestep] [--out bench/results/pour_timestep] [--analyse]
 
 Every run starts from the same lattice and runs until the simulated time `--time`; each writes
@@ -32,7 +32,7 @@ Phases (from the reference): free fall to the first contact, impacts to the peak
 energy, dense flow until it is down to a tenth of the peak, settling to the end. Per run and
 phase: the steps, the mean step, the phase's part of the KE-history error, and for adaptive runs
 the share of the steps each bound set (the `limit` column of the fix's file dt.txt: creep, dtmax,
-contact, rest, veto, other).
+contact, rest, stable, veto, other).
 
 Writes OUT.csv (one row per run), OUT_summary.csv (per adaptive run: the matching fixed step and
 the step ratio), OUT_phases.csv and OUT.png (KE histories; adaptive steps against time with the
@@ -48,12 +48,15 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DECK = os.path.join(ROOT, "inputs", "pour", "in.pour")
+SETTINGS = os.path.join(ROOT, "inputs", "pour", "pour_settings.in")
 HALO = 1e-4          # pair_style trimesh eps of the deck
 Z_FLOOR = 0.0        # top face of the floor slab
 
 DEFAULT_ADAPTIVE = [
-    # the README line: creep, veto, and the contact ceiling dtcontact (contact time / 25)
-    "readme=creep 1.1 dtcontact 4e-6 veto yes",
+    # the README line: creep, veto and (pair_style trimesh's default) the stability ceiling
+    "readme=creep 1.1 veto yes",
+    # the largest fixed step that keeps every grain in the box, as the contact ceiling
+    "dtcontact12=creep 1.1 dtcontact 1.2e-5 veto yes",
 ]
 
 
@@ -61,11 +64,12 @@ def run(a, name, dt, adapt, every):
     work = os.path.join(a.work, name)
     hist = os.path.join(work, "pour_history.txt")
     done = os.path.join(work, "done")
-    if os.path.exists(done) or os.path.exists(os.path.join(work, "unstable")) or a.analyse:
+    if any(os.path.exists(os.path.join(work, f)) for f in ("done", "unstable", "stopped")) or a.analyse:
         return hist
     os.makedirs(work, exist_ok=True)
     deck = os.path.join(work, "in.pour")     # a copy: LIGGGHTS reads its input while it runs
     shutil.copyfile(DECK, deck)
+    shutil.copyfile(SETTINGS, os.path.join(work, "pour_settings.in"))
     make = [sys.executable, os.path.join(ROOT, "inputs", "pour", "make_pour.py"), work]
     subprocess.run(make, check=True)
     chunk = max(100, int(round(0.01 / dt))) if adapt else int(math.ceil(a.time / dt - 1e-9))
@@ -78,8 +82,13 @@ def run(a, name, dt, adapt, every):
         cmd += ["-var", "adapt", "fix dtv all adapt/timestep " + adapt + " file " + os.path.join(work, "dt.txt"),
                 "-var", "tend", "%.9g" % a.time]
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    p = subprocess.run(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                       errors="replace", env=env)
+    try:
+        p = subprocess.run(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           errors="replace", env=env, timeout=a.timeout)
+    except subprocess.TimeoutExpired:
+        # too slow to finish (e.g. a step collapsed to its floor): kept as how far it got
+        open(os.path.join(work, "stopped"), "w").write("stopped after %g s of wall time\n" % a.timeout)
+        return hist
     if p.returncode != 0:
         if "Lost atoms" in p.stdout:
             # unstable: a grain was shot out of the box (kept as a result, never "as accurate")
@@ -151,14 +160,15 @@ def main():
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "liggghts-spacetree"))
     ap.add_argument("--time", type=float, default=0.15)
     ap.add_argument("--zlo", type=float, default=0.006, help="lowest lattice layer (m)")
-    ap.add_argument("--ref", type=float, default=1e-6)
+    ap.add_argument("--ref", type=float, default=2e-6)
     ap.add_argument("--dtmax", type=float, default=1e-4, help="the deck's timestep in the adaptive runs (their ceiling)")
-    ap.add_argument("--fixed", default="2e-6,3e-6,4e-6,5e-6,7e-6,1e-5,1.4e-5,2e-5")
+    ap.add_argument("--fixed", default="2.5e-6,8e-6,9e-6,1e-5,1.1e-5,1.2e-5,1.3e-5,1.4e-5,1.7e-5,2e-5")
     ap.add_argument("--adaptive", action="append", default=None, help="NAME=fix adapt/timestep arguments")
     ap.add_argument("--only", default="", help="comma-separated run names (ref, fixed_<dt>, adaptive names)")
     ap.add_argument("--work", default="/tmp/pour_timestep")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "pour_timestep"))
     ap.add_argument("--analyse", action="store_true", help="run nothing, analyse what is there")
+    ap.add_argument("--timeout", type=float, default=None, help="stop a run after this many seconds of wall time")
     ap.add_argument("--floor", default=None, help="the run that gives the noise floor (default fixed_<1.25 ref>)")
     a = ap.parse_args()
     adaptive = [s.split("=", 1) for s in (a.adaptive or DEFAULT_ADAPTIVE)]
@@ -169,7 +179,7 @@ def main():
 
     hists = {}
     for name, dt, adapt in runs:
-        if only and name not in only and not (name == "ref"):
+        if only and name not in only:
             continue
         every = 1 if adapt else max(1, int(round(1e-5 / dt)))
         path = run(a, name, dt, adapt, every)
@@ -209,8 +219,12 @@ def main():
         if r["kind"] != "adaptive":
             continue
         ad = {m: float(r[m]) for m in METRICS}
-        match = next((f for f in fixed_rows if as_accurate({m: float(f[m]) for m in METRICS}, ad, floor)), None)
-        dtc = float(r["args"].split("dtcontact")[1].split()[0]) if "dtcontact" in r["args"] else None
+        # an adaptive run that lost a grain matches nothing (nor does an unstable fixed run)
+        match = None if r["lost_at"] else next(
+            (f for f in fixed_rows if not f["lost_at"] and as_accurate({m: float(f[m]) for m in METRICS}, ad, floor)),
+            None)
+        dtc = r["args"].split("dtcontact")[1].split()[0] if "dtcontact" in r["args"] else None
+        dtc = float(dtc) if dtc not in (None, "stable", "none") else None
         summary.append(dict(adaptive=r["name"], args=r["args"], adaptive_steps=r["steps"],
                             ke_err=r["ke_err"], z_err=r["z_err"], pen_err=r["pen_err"],
                             floor_ke=floor["ke_err"], floor_z=floor["z_err"], floor_pen=floor["pen_err"],
@@ -247,7 +261,7 @@ def main():
     return 0
 
 
-LIMITS = ("creep", "dtmax", "contact", "rest", "veto")
+LIMITS = ("creep", "dtmax", "contact", "rest", "stable", "veto")
 
 
 def phases(ref, tmax):

@@ -52,7 +52,7 @@ double positive(Force *force, Error *error, const char *keyword, const char *val
 
 FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
   Fix(lmp, narg, arg), dtmin_set(false), dtmax_set(false), dtmax_captured(false), eps_set(false), veto_on(true),
-  rollback_on(false), safety(0.8), eps(0.0), list(NULL), history(NULL),
+  rollback_on(false), contact_ceiling(ContactCeiling::Default), safety(0.8), eps(0.0), list(NULL), history(NULL),
   vetoed_steps(0), floored_steps(0), critical_last(0), rollbacks(0), rollbacks_failed(0),
   rollbacks_rebuilt(0),
   overlap_now(0), overlap_peak(0), contacts_now(0), contact_speed(0), warned_floor(false), warned_exhausted(false),
@@ -84,8 +84,13 @@ FixAdaptTimestep::FixAdaptTimestep(LAMMPS *lmp, int narg, char **arg) :
       policy.dtMax = force->numeric(FLERR,arg[iarg+1]);
       dtmax_set = true;
     } else if (strcmp(arg[iarg],"dtcontact") == 0) {
-      policy.dtContact = positive(force,error,"dtcontact",arg[iarg+1]);
-      dtcontact_set = true;
+      if (strcmp(arg[iarg+1],"stable") == 0) contact_ceiling = ContactCeiling::Stable;
+      else if (strcmp(arg[iarg+1],"none") == 0) contact_ceiling = ContactCeiling::None;
+      else {
+        policy.dtContact = positive(force,error,"dtcontact",arg[iarg+1]);
+        contact_ceiling = ContactCeiling::Value;
+        dtcontact_set = true;
+      }
     } else if (strcmp(arg[iarg],"vimpact") == 0) {
       policy.impactSpeed = positive(force,error,"vimpact",arg[iarg+1]);
     } else if (strcmp(arg[iarg],"tcontact") == 0) {
@@ -210,6 +215,12 @@ void FixAdaptTimestep::init()
     }
   }
   pair_scan.use_trimesh(trimesh,eps,safety);
+  // the stability ceiling: the largest stable step pair_style trimesh prints per type pair
+  if (contact_ceiling == ContactCeiling::Stable && !trimesh)
+    error->all(FLERR,"Fix adapt/timestep dtcontact stable needs pair_style trimesh (the stable time "
+               "steps of its type pairs)");
+  policy.stableCeiling = trimesh && (contact_ceiling == ContactCeiling::Stable ||
+                                     contact_ceiling == ContactCeiling::Default);
   if (rollback_on && !(eps > 0.0))
     error->all(FLERR,"Illegal fix adapt/timestep command: rollback yes needs eps > 0 (the allowed overlap)");
   if (!force->pair && veto_on)
@@ -311,6 +322,7 @@ void FixAdaptTimestep::choose_timestep(const TimestepPairScan::Result &scan, dou
   limits.halo = 2.0*eps;
   limits.inContact = scan.contactSoon;
   limits.contactSpeed = scan.contactSpeed;
+  limits.stableStep = scan.stableStep;
   contact_speed = scan.contactSpeed;
   limits.listMargin = list_margin.margin();
   // keep at least half the skin as look-ahead: rebuild the lists in the next step when less is left

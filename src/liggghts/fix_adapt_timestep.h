@@ -72,6 +72,9 @@ class FixAdaptTimestep : public Fix {
   spacetree::TimestepPolicy policy;
   spacetree::RollbackPolicy rollback;
   bool dtmin_set, dtmax_set, dtmax_captured, eps_set, veto_on, rollback_on;
+  // dtcontact: a value, `stable` (the stability ceiling of the contacts' type pairs), `none`, or
+  // not given (pair_style trimesh: stable; other pair styles: none)
+  enum class ContactCeiling { Default, Value, Stable, None } contact_ceiling;
   double safety, eps;
   class NeighList *list;
   FILE *history;

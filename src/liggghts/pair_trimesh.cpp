@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,7 @@ struct PairTrimeshModel {
   bool rotation = true;
   TrimeshContactSettings settings;              // sub-models and explicit coefficients
   cm::ContactModelTable models;                 // one per type pair, built at init
+  std::vector<double> stable_steps;             // per type pair (TrimeshContactCoefficients)
   FixTrimeshContactHistory *history = NULL;     // per-contact history (sub-models that keep it)
   std::unique_ptr<cm::ContactHistoryMatcher> matcher;
   std::vector<double> records;                  // one pair's new history records
@@ -329,6 +331,7 @@ void PairTrimesh::init_style()
   TrimeshContactCoefficients coefficients(lmp);
   model->models = coefficients.build(model->settings,templ,model->sphere_type_radius);
   coefficients.report(model->models,model->settings,templ);
+  model->stable_steps = coefficients.stable_steps(model->models,model->settings,templ);
   setup_history();
 
   templ->set_halo(model->contact.epsilon);
@@ -412,6 +415,14 @@ const std::vector<ct::ContactPoint> &PairTrimesh::contacts_of(std::size_t k) con
 const ct::MeshContactOptions &PairTrimesh::contact_options() const
 {
   return model->contact;
+}
+
+double PairTrimesh::stable_step(int itype, int jtype) const
+{
+  const int n = atom->ntypes;
+  if (itype < 1 || jtype < 1 || itype > n || jtype > n || model->stable_steps.size() != size_t((n+1)*(n+1)))
+    return std::numeric_limits<double>::infinity();
+  return model->stable_steps[itype*(n+1)+jtype];
 }
 
 void PairTrimesh::compute(int eflag, int vflag)

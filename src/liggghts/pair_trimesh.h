@@ -74,6 +74,9 @@ class PairTrimesh : public Pair {
   const TrimeshCandidatePair &candidate_pair(std::size_t k) const;
   const std::vector<spacetree::contact::ContactPoint> &contacts_of(std::size_t k) const;
   const spacetree::contact::MeshContactOptions &contact_options() const;
+  // Largest stable time step of one contact point of type pair (itype, jtype), as init_style
+  // prints it (+inf for pairs with a sphere or wall type, or before init).
+  double stable_step(int itype, int jtype) const;
   class FixTrimeshTemplate *trimesh_template() const { return templ; }
 
  private:

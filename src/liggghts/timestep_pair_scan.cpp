@@ -46,13 +46,14 @@ TimestepPairScan::Result TimestepPairScan::scan(NeighList *list, const spacetree
   double global[NTALLY];
   MPI_Allreduce(&tally_[OVERLAP],&global[OVERLAP],1,MPI_DOUBLE,MPI_MAX,world);
   MPI_Allreduce(&tally_[CONTACTS],&global[CONTACTS],2,MPI_DOUBLE,MPI_SUM,world);   // and CRITICAL
-  MPI_Allreduce(&tally_[SOON],&global[SOON],2,MPI_DOUBLE,MPI_MAX,world);           // and SPEED
+  MPI_Allreduce(&tally_[SOON],&global[SOON],3,MPI_DOUBLE,MPI_MAX,world);           // SPEED, INV_STABLE
   Result r;
   r.maxOverlap = global[OVERLAP];
   r.contacts = global[CONTACTS];
   r.criticalPairs = global[CRITICAL];
   r.contactSoon = global[CONTACTS] > 0.0 || global[SOON] > 0.0;
   r.contactSpeed = global[SPEED];
+  r.stableStep = global[INV_STABLE] > 0.0 ? 1.0 / global[INV_STABLE] : 0.0;
   return r;
 }
 
@@ -170,7 +171,8 @@ void TimestepPairScan::scan_trimesh(NeighList *list)
   s.dtTest = dt_test_;
   s.allowedPenetration = allowed_penetration_;
   s.safety = safety_;
-  s.ceiling = policy_->dtContact > 0.0;
+  s.ceiling = policy_->dtContact > 0.0 || policy_->stableCeiling;
+  s.stable = policy_->stableCeiling;
   s.speeds = speeds_;
   s.contactTime = policy_->contactTime;
   s.accel = accel_.data();
@@ -180,6 +182,8 @@ void TimestepPairScan::scan_trimesh(NeighList *list)
   tally_[CRITICAL] += t.critical;
   if (t.soon) tally_[SOON] = 1.0;
   tally_[SPEED] = std::max(tally_[SPEED],t.speed);
+  if (t.stable < std::numeric_limits<double>::infinity())
+    tally_[INV_STABLE] = std::max(tally_[INV_STABLE],1.0 / t.stable);
 }
 
 // fix wall/gran ... primitive: every local particle of the group against the wall

@@ -27,6 +27,7 @@ class TimestepPairScan : protected Pointers {
     double criticalPairs;  // pairs the veto cut the step for, all ranks
     bool contactSoon;      // some pair overlaps or may touch within the tested step
     double contactSpeed;   // largest contact speed (vimpact), or approach speed of a pair about to touch
+    double stableStep;     // stability ceiling: smallest stable step of the pairs in contact or about to touch (0: none)
   };
 
   // owner: the fix whose group is scanned and whose forward communication carries the
@@ -49,8 +50,9 @@ class TimestepPairScan : protected Pointers {
   void unpack_comm(int n, int first, const double *buf);
 
  private:
-  // this rank's part: max overlap, contacts, critical pairs, contact soon, largest contact speed
-  enum { OVERLAP, CONTACTS, CRITICAL, SOON, SPEED, NTALLY };
+  // this rank's part: max overlap, contacts, critical pairs, contact soon, largest contact speed,
+  // 1 / the smallest stable step (stability ceiling)
+  enum { OVERLAP, CONTACTS, CRITICAL, SOON, SPEED, INV_STABLE, NTALLY };
   void share_accelerations();
   void share_velocities();
   void scan_list(class NeighList *list);

@@ -88,6 +88,7 @@ void TimestepTrimeshScan::scan_contacts(const Settings &s, spacetree::TimestepVe
     if (!(mask[a] & s.groupbit) && !(mask[b] & s.groupbit)) continue;
     const double share = (a < nlocal && b < nlocal) ? 1.0 : 0.5;
     t.contacts += share;
+    if (s.stable) t.stable = std::min(t.stable,pair_->stable_step(atom->type[a],atom->type[b]));
     bool critical = false;
     for (const ct::ContactPoint &c : points) {
       t.maxPenetration = std::max(t.maxPenetration,c.penetration);
@@ -136,8 +137,12 @@ void TimestepTrimeshScan::scan_near_pairs(NeighList *list, const Settings &s, bo
       // what is known without measuring: no contact, so d >= 2 eps; and d >= the sphere gap
       const double lower = std::max((xj-xi).norm() - ti->boundingRadius - tj->boundingRadius,2.0*halo_);
       const bool may_be_critical = veto && reach > s.safety*spacetree::haloGap(lower,halo_,P);
-      const bool may_touch = s.ceiling && (!any_contact || (s.speeds && w > t.speed)) && !(t.soon && !s.speeds) &&
-                             lower - reach < 2.0*halo_;
+      // touching would lower the ceiling: the first contact, a faster one (vimpact), or one of a
+      // type pair with a smaller stable step (stability ceiling)
+      const double stable = s.stable ? pair_->stable_step(type[i],type[j]) : 0.0;
+      const bool stiffer = s.stable && stable < t.stable;
+      const bool may_touch = s.ceiling && (!any_contact || (s.speeds && w > t.speed) || stiffer) &&
+                             !(t.soon && !s.speeds && !stiffer) && lower - reach < 2.0*halo_;
       if (!may_be_critical && !may_touch) continue;
 
       // in the pair style's canonical body order (the same on every rank)
@@ -153,6 +158,7 @@ void TimestepTrimeshScan::scan_near_pairs(NeighList *list, const Settings &s, bo
       if (s.ceiling && closing*s.dtTest > c->distance - 2.0*halo_) {
         t.soon = true;
         t.speed = std::max(t.speed,closing);
+        if (s.stable) t.stable = std::min(t.stable,stable);
       }
     }
   }

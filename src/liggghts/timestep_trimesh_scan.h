@@ -20,6 +20,7 @@
 #define LMP_TIMESTEP_TRIMESH_SCAN_H
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <unordered_set>
 
@@ -37,6 +38,7 @@ class TimestepTrimeshScan : protected Pointers {
     double allowedPenetration = 0.0;  // P: the veto keeps eps - d/2 within it
     double safety = 1.0;
     bool ceiling = false;             // dtcontact: pairs about to touch count as contacts
+    bool stable = false;              // stability ceiling: the stable steps of those pairs' types
     bool speeds = false;              // vimpact: contact speeds
     double contactTime = 0.0;         // tcontact (speeds)
     const double *accel = nullptr;    // f/m of owned and ghost atoms, 3 per atom (speeds)
@@ -48,6 +50,8 @@ class TimestepTrimeshScan : protected Pointers {
     double critical = 0.0;       // pairs the veto cut the step for
     bool soon = false;           // a pair without contact may touch within dtTest
     double speed = 0.0;          // largest contact speed (or approach speed of a pair about to touch)
+    // (stable) smallest largest-stable-step of the type pairs in contact or about to touch
+    double stable = std::numeric_limits<double>::infinity();
   };
 
   TimestepTrimeshScan(class LAMMPS *lmp, class PairTrimesh *pair);

@@ -166,6 +166,40 @@ cm::ContactModelTable TrimeshContactCoefficients::build(const TrimeshContactSett
   return cm::ContactModelTable();
 }
 
+/* Contact time and largest stable step of one contact point of a type pair of grains and
+   obstacles (both types with a template); the lightest contact point: translation plus rotation
+   about the smallest moment, lever = bounding radius (rotation no: translation only). */
+
+spacetree::contact_model::ContactTiming
+TrimeshContactCoefficients::timing(const cm::ContactModel &m, const TrimeshContactSettings &s,
+                                   const TrimeshTypeTemplate *ti, const TrimeshTypeTemplate *tj)
+{
+  const double inv_m = (ti->fixed ? 0.0 : 1.0 / ti->mass) + (tj->fixed ? 0.0 : 1.0 / tj->mass);
+  const auto inv_point = [&s](const TrimeshTypeTemplate *t) {
+    if (t->fixed) return 0.0;
+    return 1.0 / t->mass + (s.rotation ? t->boundingRadius * t->boundingRadius / t->inertia.minCoeff() : 0.0);
+  };
+  const double S = m.normal().stiffness();
+  const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
+  const double kt = m.tangential() ? m.tangential()->stiffness() : 0.0;
+  const double Dt = m.tangential() ? m.tangential()->damping() : 0.0;
+  return cm::contactTiming(S,D,1.0 / inv_m,kt,Dt,1.0 / (inv_point(ti) + inv_point(tj)));
+}
+
+std::vector<double> TrimeshContactCoefficients::stable_steps(const cm::ContactModelTable &table,
+                                                             const TrimeshContactSettings &s,
+                                                             FixTrimeshTemplate *templ)
+{
+  const int n = table.types();
+  std::vector<double> steps((n+1)*(n+1),kInf);
+  for (int i = 1; i <= n; i++)
+    for (int j = 1; j <= n; j++) {
+      const TrimeshTypeTemplate *ti = templ->type_template(i), *tj = templ->type_template(j);
+      if (table.has(i,j) && ti && tj) steps[i*(n+1)+j] = timing(table.at(i,j),s,ti,tj).stableStep;
+    }
+  return steps;
+}
+
 void TrimeshContactCoefficients::report(const cm::ContactModelTable &table,
                                         const TrimeshContactSettings &s, FixTrimeshTemplate *templ)
 {
@@ -187,18 +221,10 @@ void TrimeshContactCoefficients::report(const cm::ContactModelTable &table,
         text += line;
         continue;
       }
-      const double inv_m = (ti->fixed ? 0.0 : 1.0 / ti->mass) + (tj->fixed ? 0.0 : 1.0 / tj->mass);
-      // the lightest contact point: translation plus rotation about the smallest moment, lever =
-      // bounding radius (rotation no: translation only)
-      const auto inv_point = [&s](const TrimeshTypeTemplate *t) {
-        if (t->fixed) return 0.0;
-        return 1.0 / t->mass + (s.rotation ? t->boundingRadius * t->boundingRadius / t->inertia.minCoeff() : 0.0);
-      };
       const double S = m.normal().stiffness();
       const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
       const double kt = m.tangential() ? m.tangential()->stiffness() : 0.0;
-      const double Dt = m.tangential() ? m.tangential()->damping() : 0.0;
-      const cm::ContactTiming t = cm::contactTiming(S,D,1.0 / inv_m,kt,Dt,1.0 / (inv_point(ti) + inv_point(tj)));
+      const cm::ContactTiming t = timing(m,s,ti,tj);
       smallest = std::min(smallest,t.stableStep);
       if (m.cohesion() && m.cohesion()->pullOffForce() > S * s.eps) {
         char msg[300];

@@ -14,9 +14,12 @@
 #include <vector>
 
 #include "contact_model/ContactModel.h"
+#include "contact_model/MaterialMapping.h"
 #include "pointers.h"
 
 namespace LAMMPS_NS {
+
+struct TrimeshTypeTemplate;
 
 struct TrimeshContactSettings {
   spacetree::contact_model::ContactModelSpec spec;
@@ -46,12 +49,20 @@ class TrimeshContactCoefficients : protected Pointers {
   // warns when the time step exceeds the smallest.
   void report(const spacetree::contact_model::ContactModelTable &table,
               const TrimeshContactSettings &settings, class FixTrimeshTemplate *templ);
+  // Largest stable time step of one contact point per type pair, at [i*(ntypes+1)+j]: pairs of
+  // grains and obstacles (the lightest contact point, as report() prints it); +inf otherwise.
+  std::vector<double> stable_steps(const spacetree::contact_model::ContactModelTable &table,
+                                   const TrimeshContactSettings &settings, class FixTrimeshTemplate *templ);
 
  private:
   spacetree::contact_model::ContactParameters parameters(int i, int j,
                                                          const TrimeshContactSettings &settings,
                                                          class FixTrimeshTemplate *templ,
                                                          const std::vector<double> &sphere_radius);
+  spacetree::contact_model::ContactTiming timing(const spacetree::contact_model::ContactModel &model,
+                                                 const TrimeshContactSettings &settings,
+                                                 const TrimeshTypeTemplate *ti,
+                                                 const TrimeshTypeTemplate *tj);
   class FixPropertyGlobal *material(const char *name, bool pair, const char *why);
   double per_type(const char *name, int t, const char *why);
   double per_pair(const char *name, int i, int j, const char *why);

@@ -212,6 +212,33 @@ TEST(AdaptiveTimestep, ContactCeilingAppliesOnlyWhilePairsOverlap) {
   EXPECT_DOUBLE_EQ(nextTimestep(5e-6, policy, limits, INFINITY).dt, 5.5e-6) << "creeps up to it";
 }
 
+// The stability ceiling (fix adapt/timestep with pair_style trimesh: the largest stable step of
+// the type pairs in contact) caps the step only while pairs are in contact or about to touch,
+// together with a dtContact (the smaller wins), and only when the policy asks for it.
+TEST(AdaptiveTimestep, StabilityCeilingCapsTheStepInContact) {
+  TimestepPolicy policy;
+  policy.dtMax = 1e-3;
+  policy.stableCeiling = true;
+  TimestepLimits limits;
+  limits.stableStep = 1.2e-5;
+  EXPECT_DOUBLE_EQ(nextTimestep(1e-3, policy, limits, INFINITY).dt, 1e-3) << "free flight: dtMax";
+  limits.inContact = true;
+  TimestepDecision d = nextTimestep(1e-3, policy, limits, INFINITY);
+  EXPECT_DOUBLE_EQ(d.dt, 1.2e-5);
+  EXPECT_EQ(d.limiter, TimestepLimiter::Stable);
+  EXPECT_STREQ(limiterName(d.limiter), "stable");
+  EXPECT_DOUBLE_EQ(nextTimestep(1e-5, policy, limits, INFINITY).dt, 1.1e-5) << "creeps up to it";
+  policy.dtContact = 1e-5;   // the smaller of the two ceilings
+  EXPECT_EQ(nextTimestep(1e-3, policy, limits, INFINITY).limiter, TimestepLimiter::Contact);
+  policy.dtContact = 2e-5;
+  EXPECT_DOUBLE_EQ(nextTimestep(1e-3, policy, limits, INFINITY).dt, 1.2e-5);
+  limits.stableStep = 0.0;   // no stable step known: the other bounds
+  EXPECT_DOUBLE_EQ(nextTimestep(1e-3, policy, limits, INFINITY).dt, 2e-5);
+  limits.stableStep = 1.2e-5;
+  policy.stableCeiling = false;
+  EXPECT_DOUBLE_EQ(nextTimestep(1e-3, policy, limits, INFINITY).dt, 2e-5);
+}
+
 // The decision names the bound that set the step (fix adapt/timestep's `limit` column): each
 // bound in turn made the smallest.
 TEST(AdaptiveTimestep, DecisionNamesTheBoundThatSetTheStep) {

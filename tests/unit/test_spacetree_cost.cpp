@@ -4,6 +4,7 @@
 // exactly the paper's (vertex within r + 2 eps + h sqrt(3) of the coarser particle).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -143,4 +144,40 @@ TEST(SpacetreeCost, DiluteContinuousCloudTestsLinksOnlyNearCoarseParticles) {
   // Each test is a (finer vertex, coarser particle) pair near that particle: about the links,
   // not (finer vertices) x (coarser particles in their neighbourhood).
   EXPECT_LE(tests, 2 * links + 100) << links << " links, " << coarse << " particles above the finest level";
+}
+
+// A dense pack of one size (bench/neighbor_vs_lammps' bidisperse_R1: spheres of d = 1 on a
+// jittered lattice of spacing 1.1, skin 0.1): one particle per vertex, so the per-vertex
+// records weigh as much as the particles. The tree holds at most 88 bytes per particle (sorted
+// copies 36, 8-byte sort records and their scratch 16, vertex record and key 28, level 1), and
+// the pairs with an active particle are brute force's, in blocks of candidates far more than
+// one (half the particles inactive, as ghosts).
+TEST(SpacetreeCost, DenseOneSizePackHoldsFewBytesPerParticle) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> jitter(-0.04, 0.04);
+  const int side = 20;
+  const double eps = 0.05;
+  Cloud c;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      for (int k = 0; k < side; ++k) c.add(1.1 * i + jitter(rng), 1.1 * j + jitter(rng), 1.1 * k + jitter(rng), 0.5);
+  // inactive particles: a random half, moved to the end (the tree takes [0, nActive) as active)
+  std::shuffle(c.x.begin(), c.x.end(), rng);
+  const int nActive = c.size() / 2;
+
+  Spacetree tree(SpacetreeOptions{eps});
+  tree.build(c.positions(), c.r.data(), c.size(), nActive);
+  PairSet found;
+  tree.forEachPairWithin([&](int i, int j, double) { EXPECT_TRUE(found.insert(std::minmax(i, j)).second); });
+  PairSet expected;
+  for (const auto& pr : bruteForce(c, eps))
+    if (pr.first < nActive || pr.second < nActive) expected.insert(pr);
+  EXPECT_EQ(found, expected);
+  EXPECT_GT(expected.size(), std::size_t(c.size()));
+
+  const auto& s = tree.statistics();
+  ASSERT_GE(s.deepestPopulatedLevel, 0);
+  EXPECT_EQ(s.levels[std::size_t(s.deepestPopulatedLevel)].vertices, std::uint64_t(c.size()))
+      << "not one particle per vertex: the scene does not test what it should";
+  EXPECT_LE(double(s.memoryBytes) / c.size(), 88.0) << s.memoryBytes << " bytes";
 }

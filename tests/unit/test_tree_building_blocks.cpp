@@ -13,20 +13,37 @@
 
 using namespace spacetree;
 
+namespace {
+// radixSortByKey on these records gives std::stable_sort's order.
+template <class Record>
+void expectStableSort(std::vector<Record> records, const char* what) {
+  std::vector<Record> expected = records, scratch;
+  std::stable_sort(expected.begin(), expected.end(), [](const Record& a, const Record& b) { return a.key < b.key; });
+  radixSortByKey(records, scratch);
+  ASSERT_EQ(records.size(), expected.size());
+  for (std::size_t s = 0; s < records.size(); ++s) {
+    ASSERT_EQ(records[s].key, expected[s].key) << what << " at " << s;
+    ASSERT_EQ(records[s].index, expected[s].index) << what << ": not stable at " << s;
+  }
+}
+}  // namespace
+
 TEST(RadixSort, SortsLikeAStableSort) {
   std::mt19937_64 rng(3);
   for (std::uint64_t spread : {std::uint64_t(7), std::uint64_t(1) << 40, ~std::uint64_t(0)}) {
-    std::vector<KeyedIndex> records, scratch;
+    std::vector<KeyedIndex> records;
     for (int i = 0; i < 5000; ++i) records.push_back(KeyedIndex{(rng() % spread) << 3, i});
-    std::vector<KeyedIndex> expected = records;
-    std::stable_sort(expected.begin(), expected.end(),
-                     [](const KeyedIndex& a, const KeyedIndex& b) { return a.key < b.key; });
-    radixSortByKey(records, scratch);
-    ASSERT_EQ(records.size(), expected.size());
-    for (std::size_t s = 0; s < records.size(); ++s) {
-      EXPECT_EQ(records[s].key, expected[s].key);
-      EXPECT_EQ(records[s].index, expected[s].index) << "not stable at " << s;
-    }
+    expectStableSort(records, "64-bit keys");
+  }
+}
+
+TEST(RadixSort, SortsNarrowRecordsLikeAStableSort) {
+  // The 8-byte records of trees whose keys fit into 32 bits: the same passes on a 32-bit key.
+  std::mt19937_64 rng(5);
+  for (std::uint32_t spread : {std::uint32_t(7), std::uint32_t(1) << 21, ~std::uint32_t(0)}) {
+    std::vector<KeyedIndex32> records;
+    for (int i = 0; i < 5000; ++i) records.push_back(KeyedIndex32{std::uint32_t(rng() % spread), i});
+    expectStableSort(records, "32-bit keys");
   }
 }
 
@@ -73,6 +90,13 @@ TEST(SortKeyPacking, KeepsTheOrderOfLevelVertexKeysAndRestoresThem) {
     }
     for (std::size_t a = 1; a < keys.size(); ++a)
       ASSERT_EQ(keys[a - 1].first < keys[a].first, keys[a - 1].second < keys[a].second) << "depth " << depth;
+    // keyBits holds the largest key (the tree sorts 32-bit records when keyBits <= 32), and
+    // no fewer bits would: the deepest level and the top index need its highest bit.
+    const std::uint64_t largest = packing.toSortKey(depth, top, top, top);
+    ASSERT_LE(packing.keyBits, 64);
+    EXPECT_EQ(packing.keyBits == 64 ? 0 : largest >> packing.keyBits, 0u) << "depth " << depth;
+    if (depth > 0) EXPECT_EQ(largest >> (packing.keyBits - 1), 1u) << "depth " << depth;
+    EXPECT_EQ(packing.levelOf(largest), depth);
   }
 }
 

@@ -26,6 +26,7 @@ const char* limiterName(TimestepLimiter limiter) {
     case TimestepLimiter::Ceiling: return "dtmax";
     case TimestepLimiter::Contact: return "contact";
     case TimestepLimiter::Rest: return "rest";
+    case TimestepLimiter::Stable: return "stable";
     case TimestepLimiter::Mesh: return "mesh";
     case TimestepLimiter::Skin: return "skin";
     case TimestepLimiter::ListMargin: return "margin";
@@ -55,6 +56,8 @@ TimestepDecision nextTimestep(double dt, const TimestepPolicy& policy, const Tim
     bound(ceiling, policy.impactSpeed > 0.0 && ceiling == policy.dtRest ? TimestepLimiter::Rest
                                                                          : TimestepLimiter::Contact);
   }
+  if (limits.inContact && policy.stableCeiling && limits.stableStep > 0.0)
+    bound(limits.stableStep, TimestepLimiter::Stable);
   if (limits.maxSpeed > 0.0) {
     if (limits.finestCell > 0.0) bound((limits.finestCell + limits.halo) / limits.maxSpeed, TimestepLimiter::Mesh);
     // LIGGGHTS rebuilds its lists when a particle moved skin/2: never move further in one step

@@ -22,6 +22,9 @@ struct TimestepPolicy {
   double impactSpeed = 0.0;
   double contactTime = 0.0;  // shortest contact time tc of the system: omega = pi / tc
   double dtRest = 0.0;
+  // Stability ceiling: while in contact the step is at most TimestepLimits::stableStep, the
+  // largest stable step of the contacts present (triangulated grains: of their type pairs).
+  bool stableCeiling = false;
 };
 
 struct TimestepLimits {
@@ -35,6 +38,9 @@ struct TimestepLimits {
   // relative approach the current neighbour list still covers: skin - 2 * (largest displacement
   // since the list was built); pairs outside the list are at least this far apart (0 = no limit)
   double listMargin = 0.0;
+  // with inContact and TimestepPolicy::stableCeiling: the smallest largest-stable-step of the
+  // pairs in contact or about to touch (0 = none known)
+  double stableStep = 0.0;
 };
 
 // What set the step (the smallest of the bounds; the first of them in this order on a tie).
@@ -43,14 +49,15 @@ enum class TimestepLimiter {
   Ceiling,      // dtMax
   Contact,      // the contact ceiling (dtContact, or with impactSpeed the contact-speed one)
   Rest,         // dtRest: the contacts are slow, the enduring-contact ceiling applies
+  Stable,       // the stability ceiling of the contacts present (stableCeiling)
   Mesh,         // (h_min + halo) / v_max
   Skin,         // skin / (2 v_max)
   ListMargin,   // list margin / (2 v_max)
   Veto,         // a critical approach
   Floor         // dtMin (the rest asked for less)
 };
-// Short lower-case name ("creep", "dtmax", "contact", "rest", "mesh", "skin", "margin", "veto",
-// "dtmin"): the `limit` column of fix adapt/timestep's file.
+// Short lower-case name ("creep", "dtmax", "contact", "rest", "stable", "mesh", "skin", "margin",
+// "veto", "dtmin"): the `limit` column of fix adapt/timestep's file.
 const char* limiterName(TimestepLimiter limiter);
 
 struct TimestepDecision {

@@ -14,16 +14,23 @@ struct KeyedIndex {
   std::uint64_t key;
   std::int32_t index;
 };
+// Half the size, for keys that fit into 32 bits (a tree of few levels).
+struct KeyedIndex32 {
+  std::uint32_t key;
+  std::int32_t index;
+};
 
-// Sorts `records` by key; equal keys keep their order. `scratch` is resized as needed. Only the
-// bits in which the keys differ are sorted on, in as few passes of at most 12 bits as they
-// need (keys varying in 21 bits: two passes), each pass skipped where all keys agree.
-inline void radixSortByKey(std::vector<KeyedIndex>& records, std::vector<KeyedIndex>& scratch) {
+// Sorts `records` (KeyedIndex or KeyedIndex32) by key; equal keys keep their order. `scratch`
+// is resized as needed. Only the bits in which the keys differ are sorted on, in as few passes
+// of at most 12 bits as they need (keys varying in 21 bits: two passes), each pass skipped
+// where all keys agree.
+template <class Record>
+void radixSortByKey(std::vector<Record>& records, std::vector<Record>& scratch) {
   constexpr int kMaxDigitBits = 12;
   const std::size_t n = records.size();
   if (n < 2) return;
   std::uint64_t varying = 0;
-  for (const KeyedIndex& r : records) varying |= r.key ^ records[0].key;
+  for (const Record& r : records) varying |= std::uint64_t(r.key ^ records[0].key);
   if (varying == 0) return;
   int low = 0, high = 63;
   while (!((varying >> low) & 1)) ++low;
@@ -37,14 +44,14 @@ inline void radixSortByKey(std::vector<KeyedIndex>& records, std::vector<KeyedIn
   for (int shift = low; shift <= high; shift += digitBits) {
     if (((varying >> shift) & mask) == 0) continue;  // all keys share this digit
     std::fill(offset.begin(), offset.begin() + (mask + 1), 0u);
-    for (const KeyedIndex& r : records) ++offset[(r.key >> shift) & mask];
+    for (const Record& r : records) ++offset[(std::uint64_t(r.key) >> shift) & mask];
     std::uint32_t sum = 0;
     for (std::size_t d = 0; d <= mask; ++d) {
       const std::uint32_t count = offset[d];
       offset[d] = sum;
       sum += count;
     }
-    for (const KeyedIndex& r : records) scratch[offset[(r.key >> shift) & mask]++] = r;
+    for (const Record& r : records) scratch[offset[(std::uint64_t(r.key) >> shift) & mask]++] = r;
     records.swap(scratch);
   }
 }

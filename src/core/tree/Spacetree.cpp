@@ -85,7 +85,7 @@ void Spacetree::clear(int n, int nActive) {
     level.keys.clear();
     level.rows.clear();
     level.slices.clear();
-    level.boxes.clear();
+    level.crowds.clear();
   }
   stats_ = SpacetreeStatistics{};
   particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
@@ -130,14 +130,13 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
   placeParticles(x, radius, n, hostLevelOf);
 }
 
-void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n,
-                               const int* hostLevelOf) {
-  // Drop every particle to its level and key it by its nearest vertex there.
-  sortKeys_.resize(std::size_t(n));
+template <class Record>
+void Spacetree::keyParticles(const double (*x)[3], const double* radius, int n, const int* hostLevelOf,
+                             const SortKeyPacking& packing, std::vector<Record>& records) {
+  const int levelCount = int(levels_.size());
+  records.resize(std::size_t(n));
   double lastRadius = -1.0;  // radii repeat (monodisperse species): skip the log
   int lastLevel = 0;
-  const int levelCount = int(levels_.size());
-  const SortKeyPacking packing(levelCount - 1);
   for (int i = 0; i < n; ++i) {
     // A caller's level may be coarser than the finest admissible one, never finer. Mesh sizes
     // fall with the level, so a level whose mesh still fits the particle is at or above the
@@ -153,22 +152,48 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
       }
       l = hostLevelOf ? std::clamp(hostLevelOf[i], 0, lastLevel) : lastLevel;
     }
-    particleLevel_[i] = l;
+    particleLevel_[i] = std::int8_t(l);
     const double inv = 1.0 / levels_[l].meshSize;
     const std::int64_t vi = nearestVertexCoordinate(x[i][0], origin_[0], inv);
     const std::int64_t vj = nearestVertexCoordinate(x[i][1], origin_[1], inv);
     const std::int64_t vk = nearestVertexCoordinate(x[i][2], origin_[2], inv);
-    sortKeys_[i] = KeyedIndex{packing.toSortKey(l, vi, vj, vk), i};
+    records[std::size_t(i)] = Record{decltype(Record::key)(packing.toSortKey(l, vi, vj, vk)), i};
   }
-  radixSortByKey(sortKeys_, sortScratch_);
-  for (KeyedIndex& r : sortKeys_) r.key = packing.fromSortKey(r.key);
+}
+
+void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n,
+                               const int* hostLevelOf) {
+  // Drop every particle to its level and key it by its nearest vertex there. Keys of a tree of
+  // few levels fit into 32 bits: records of 8 bytes instead of 16 (half the sort's traffic and
+  // memory); only the record vectors of the width in use hold storage.
+  const int levelCount = int(levels_.size());
+  const SortKeyPacking packing(levelCount - 1);
+  if (packing.keyBits <= 32) {
+    std::vector<KeyedIndex>().swap(sortKeys_);
+    std::vector<KeyedIndex>().swap(sortScratch_);
+    keyParticles(x, radius, n, hostLevelOf, packing, sortKeys32_);
+    radixSortByKey(sortKeys32_, sortScratch32_);
+    placeSorted(sortKeys32_, packing, x, radius, n);
+  } else {
+    std::vector<KeyedIndex32>().swap(sortKeys32_);
+    std::vector<KeyedIndex32>().swap(sortScratch32_);
+    keyParticles(x, radius, n, hostLevelOf, packing, sortKeys_);
+    radixSortByKey(sortKeys_, sortScratch_);
+    placeSorted(sortKeys_, packing, x, radius, n);
+  }
+  countMemory();
+}
+
+template <class Record>
+void Spacetree::placeSorted(const std::vector<Record>& sorted, const SortKeyPacking& packing, const double (*x)[3],
+                            const double* radius, int n) {
   sx_.resize(std::size_t(n));
   sy_.resize(std::size_t(n));
   sz_.resize(std::size_t(n));
   sr_.resize(std::size_t(n));
   sortedId_.resize(std::size_t(n));
   for (int s = 0; s < n; ++s) {
-    const int id = sortKeys_[s].index;
+    const int id = sorted[std::size_t(s)].index;
     sx_[s] = x[id][0];
     sy_[s] = x[id][1];
     sz_[s] = x[id][2];
@@ -176,41 +201,44 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
     sortedId_[s] = id;
   }
 
-  // Vertices per level, and their look-up tables.
+  // Vertices per level, and their look-up tables (reserved at their size: no copies on growth).
   for (int s = 0; s < n;) {
-    const int l = int(sortKeys_[s].key >> kLevelShift);
+    const int l = packing.levelOf(sorted[std::size_t(s)].key);
     Level& level = levels_[l];
     int e = s;
-    while (e < n && int(sortKeys_[e].key >> kLevelShift) == l) {
-      const std::uint64_t key = sortKeys_[e].key;
-      Vertex v;
-      v.index = unpackVertexKey(key);
-      v.begin = e;
-      v.active = 0;
-      while (e < n && sortKeys_[e].key == key) {
-        if (sortKeys_[e].index < nActive_) ++v.active;
-        ++e;
-      }
+    std::size_t vertexCount = 0;
+    for (; e < n && packing.levelOf(sorted[std::size_t(e)].key) == l; ++e)
+      vertexCount += (e == s || sorted[std::size_t(e)].key != sorted[std::size_t(e - 1)].key) ? 1 : 0;
+    level.vertices.reserve(vertexCount);
+    level.keys.reserve(vertexCount);
+    for (e = s; e < n && packing.levelOf(sorted[std::size_t(e)].key) == l;) {
+      const auto sortKey = sorted[std::size_t(e)].key;
+      const std::uint64_t key = packing.fromSortKey(sortKey);
+      // Filled in place (a record built on the stack and copied in reads back fields just
+      // written piecewise: a stalled store-to-load forward per vertex).
+      const std::int32_t slot = std::int32_t(level.vertices.size()), begin = e;
+      std::int32_t active = 0;
+      for (; e < n && sorted[std::size_t(e)].key == sortKey; ++e) active += sorted[std::size_t(e)].index < nActive_ ? 1 : 0;
+      Vertex& v = level.vertices.emplace_back();
+      v.begin = begin;
       v.end = e;
-      v.maxRadius = 0.0;
-      for (std::int32_t q = v.begin; q < v.end; ++q) v.maxRadius = std::max(v.maxRadius, sr_[q]);
-      v.bigBegin = v.end;
-      v.maxSmallRadius = v.maxRadius;
+      v.active = active;
+      v.bigBegin = e;
       v.box = -1;
       if (v.end - v.begin >= kSweepAndPruneMinParticles) {
         v.bigBegin = orderCrowdedVertex(v.begin, v.end, x, radius);
-        v.maxSmallRadius = 0.0;
-        for (std::int32_t q = v.begin; q < v.bigBegin; ++q) v.maxSmallRadius = std::max(v.maxSmallRadius, sr_[q]);
-        v.box = std::int32_t(level.boxes.size());
-        level.boxes.push_back(boxOf(v.begin, v.bigBegin));
+        Crowd crowd{boxOf(v.begin, v.bigBegin), 0.0};
+        for (std::int32_t q = v.begin; q < v.bigBegin; ++q) crowd.maxSmallRadius = std::max(crowd.maxSmallRadius, sr_[q]);
+        v.box = std::int32_t(level.crowds.size());
+        level.crowds.push_back(crowd);
       }
-      level.vertices.push_back(v);
       // Rows of equal (i, j), slices of equal i.
-      const std::int32_t slot = std::int32_t(level.vertices.size() - 1);
-      const bool newSlice = level.keys.empty() || v.index.i != level.vertices[slot - 1].index.i;
-      if (newSlice || v.index.j != level.vertices[slot - 1].index.j) {
-        if (newSlice) level.slices.push_back(Slice{v.index.i, std::int32_t(level.rows.size())});
-        level.rows.push_back(Row{v.index.j, slot, slot});
+      const VertexIndex index = unpackVertexKey(key);
+      const VertexIndex previous = slot > 0 ? indexOf(level, std::size_t(slot - 1)) : VertexIndex{-1, -1, -1};
+      const bool newSlice = slot == 0 || index.i != previous.i;
+      if (newSlice || index.j != previous.j) {
+        if (newSlice) level.slices.push_back(Slice{index.i, std::int32_t(level.rows.size())});
+        level.rows.push_back(Row{index.j, slot, slot});
       }
       level.rows.back().end = slot + 1;
       level.keys.push_back(key & ((std::uint64_t(1) << kLevelShift) - 1));
@@ -221,14 +249,17 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
     stats_.deepestPopulatedLevel = l;
     s = e;
   }
+}
 
+void Spacetree::countMemory() {
   std::uint64_t bytes = (sx_.capacity() + sy_.capacity() + sz_.capacity() + sr_.capacity()) * sizeof(double) +
-                        (sortedId_.capacity() + particleLevel_.capacity()) * sizeof(std::int32_t) +
-                        (sortKeys_.capacity() + sortScratch_.capacity()) * sizeof(KeyedIndex);
+                        sortedId_.capacity() * sizeof(std::int32_t) + particleLevel_.capacity() +
+                        (sortKeys_.capacity() + sortScratch_.capacity()) * sizeof(KeyedIndex) +
+                        (sortKeys32_.capacity() + sortScratch32_.capacity()) * sizeof(KeyedIndex32);
   for (const Level& level : levels_)
     bytes += level.vertices.capacity() * sizeof(Vertex) + level.keys.capacity() * sizeof(std::uint64_t) +
              level.rows.capacity() * sizeof(Row) + level.slices.capacity() * sizeof(Slice) +
-             level.boxes.capacity() * sizeof(Box);
+             level.crowds.capacity() * sizeof(Crowd);
   stats_.memoryBytes = bytes;
 }
 
@@ -333,7 +364,7 @@ Spacetree::Box Spacetree::boxOf(std::int32_t begin, std::int32_t end) const {
 }
 
 Spacetree::Box Spacetree::smallBox(const Level& level, const Vertex& v) const {
-  return v.box >= 0 ? level.boxes[std::size_t(v.box)] : boxOf(v.begin, v.bigBegin);
+  return v.box >= 0 ? level.crowds[std::size_t(v.box)].box : boxOf(v.begin, v.bigBegin);
 }
 
 void Spacetree::particlesNearBox(std::int32_t begin, std::int32_t end, bool sorted, const Box& box,

@@ -84,7 +84,7 @@ class Spacetree {
   template <class Visitor>
   void forEachPairWithin(Visitor&& visit, double relativeTolerance = 0.0) {
     const double scale = 1.0 + relativeTolerance;
-    sweep(WithinVisitor<Visitor>{*this, visit, 2.0 * options_.epsilon, scale}, scale * (1.0 + kPruneMargin));
+    sweep(WithinVisitor<Visitor>(*this, visit, 2.0 * options_.epsilon, scale), scale * (1.0 + kPruneMargin));
   }
 
   int levelOf(int particle) const { return particleLevel_[particle]; }
@@ -106,20 +106,24 @@ class Spacetree {
   }
 
  private:
+  // 20 bytes: a dense level holds about one vertex per particle. The (i, j, k) index is in
+  // Level::keys (indexOf); what only crowded vertices need is in Level::crowds.
   struct Vertex {
-    VertexIndex index;
     std::int32_t begin, end;  // range of hosted particles in the sorted arrays
     std::int32_t active;      // how many of them are active
-    double maxRadius;         // of the hosted particles
-    std::int32_t bigBegin;    // crowded: [bigBegin, end) holds the much bigger ones, unsorted
-    std::int32_t box;         // crowded: its entry in Level::boxes, else -1
-    double maxSmallRadius;    // of [begin, bigBegin)
+    std::int32_t bigBegin;    // crowded: [bigBegin, end) holds the much bigger ones, unsorted; else end
+    std::int32_t box;         // crowded: its entry in Level::crowds, else -1
     // Crowded: [begin, bigBegin) is ordered by x (sweep and prune).
     bool sortedByX() const { return box >= 0; }
   };
   // Bounding box of particle centres.
   struct Box {
     double lo[3], hi[3];
+  };
+  // A crowded vertex's [begin, bigBegin): the box of the centres and the largest radius.
+  struct Crowd {
+    Box box;
+    double maxSmallRadius;
   };
   // Vertices holding at least this many particles are crowded (see the top of this file).
   // Regular levels rarely reach it; coarse levels holding a lifted cloud (reluctant grid) do.
@@ -139,15 +143,22 @@ class Spacetree {
     std::vector<std::uint64_t> keys;      // their packed keys (the walks read only these)
     std::vector<Row> rows;                // sorted by (i, j)
     std::vector<Slice> slices;            // sorted by i, and a last one past the end
-    std::vector<Box> boxes;               // of the crowded vertices' [begin, bigBegin)
+    std::vector<Crowd> crowds;            // of the crowded vertices
   };
+  static VertexIndex indexOf(const Level& level, std::size_t slot) { return unpackVertexKey(level.keys[slot]); }
+  // Largest radius of [begin, bigBegin): stored for crowded vertices, computed otherwise.
+  double maxSmallRadius(const Level& level, const Vertex& v) const {
+    if (v.box >= 0) return level.crowds[std::size_t(v.box)].maxSmallRadius;
+    double r = 0.0;
+    for (std::int32_t q = v.begin; q < v.bigBegin; ++q) r = std::max(r, sr_[q]);
+    return r;
+  }
 
   // What the traversal calls (positions in the sorted arrays): onPair(a, b) for one candidate
   // pair, and onPair.range(a, first, last, aActive) for a against each of the contiguous
   // positions [first, last) in order, skipping the pairs of two inactive particles (aActive:
-  // whether a is active). Candidates go to the visitor as they are; pairs within the cut-off
-  // are selected branch-free over a range (most candidates of a dense level miss) and then
-  // visited in order, with their distance evaluated as for a single pair.
+  // whether a is active); onPair.finish() once at the end of the sweep. Candidates go to the
+  // visitor as they are; pairs within the cut-off are selected in blocks (see WithinVisitor).
   template <class Visit>
   struct CandidateVisitor {
     const Spacetree& tree;
@@ -157,12 +168,26 @@ class Spacetree {
       for (std::int32_t b = first; b < last; ++b)
         if (aActive || tree.isActive(b)) (*this)(a, b);
     }
+    void finish() const {}
   };
+  // Candidates are queued (in sweep order) and tested a block at a time: one branch-free pass
+  // computes every distance and keeps the positions within the cut-off, then the hits are
+  // visited in order. On a dense level most candidates miss and most runs are short (one
+  // particle per vertex against the 2-3 of a neighbouring row), so testing them as they come
+  // would pay a mispredicted branch per run; the block pass pays none.
   template <class Visit>
   struct WithinVisitor {
     const Spacetree& tree;
     Visit& visit;
     double halo, scale;
+    bool allActive;  // no inactive particle: no activity test per hit
+    static constexpr std::int32_t kBlock = 1024, kShortRun = 4;
+    std::int32_t queued = 0;
+    // not initialised: filled before read; kShortRun slots of slack for the short-run writes
+    std::int32_t first[kBlock + kShortRun], second[kBlock + kShortRun], hit[kBlock + kShortRun];
+
+    WithinVisitor(const Spacetree& t, Visit& v, double h, double s)
+        : tree(t), visit(v), halo(h), scale(s), allActive(t.nActive_ >= t.particleCount()) {}
     double distanceSquared(std::int32_t a, std::int32_t b) const {
       const double dx = tree.sx_[a] - tree.sx_[b], dy = tree.sy_[a] - tree.sy_[b], dz = tree.sz_[a] - tree.sz_[b];
       return dx * dx + dy * dy + dz * dz;
@@ -176,27 +201,52 @@ class Spacetree {
       else
         visit(tree.sortedId_[a], tree.sortedId_[b], d2);
     }
-    void operator()(std::int32_t a, std::int32_t b) const {
-      const double d2 = distanceSquared(a, b), c = cut(a, b);
-      if (d2 <= c * c) emit(a, b, d2);
+    // The callers queue only pairs with an active particle, except range() for an inactive a,
+    // whose pairs with inactive particles the flush drops.
+    void operator()(std::int32_t a, std::int32_t b) {
+      first[queued] = a;
+      second[queued] = b;
+      if (++queued == kBlock) flush();
     }
-    void range(std::int32_t a, std::int32_t first, std::int32_t last, bool aActive) const {
-      constexpr std::int32_t kChunk = 32;
-      std::int32_t hits[kChunk];
-      for (std::int32_t start = first; start < last; start += kChunk) {
-        const std::int32_t stop = std::min(last, start + kChunk);
-        std::int32_t count = 0;
-        for (std::int32_t b = start; b < stop; ++b) {
-          const double d2 = distanceSquared(a, b), c = cut(a, b);
-          hits[count] = b;
-          count += d2 <= c * c ? 1 : 0;
+    void range(std::int32_t a, std::int32_t from, std::int32_t to, bool) {
+      // A short run (a dense level: the 0-3 particles of a forward row's k - 1 .. k + 1) is
+      // written as kShortRun slots whatever its length, and counted by its length: no branch
+      // on the length, which varies from run to run.
+      if (to - from <= kShortRun) {
+        for (std::int32_t t = 0; t < kShortRun; ++t) {
+          first[queued + t] = a;
+          second[queued + t] = from + t;
         }
-        for (std::int32_t t = 0; t < count; ++t) {
-          const std::int32_t b = hits[t];
-          if (aActive || tree.isActive(b)) emit(a, b, distanceSquared(a, b));
+        queued += std::max(to - from, 0);
+        if (queued >= kBlock) flush();
+        return;
+      }
+      while (from < to) {
+        const std::int32_t take = std::min(to - from, kBlock - queued);
+        for (std::int32_t t = 0; t < take; ++t) {
+          first[queued + t] = a;
+          second[queued + t] = from + t;
         }
+        queued += take;
+        from += take;
+        if (queued == kBlock) flush();
       }
     }
+    void flush() {
+      std::int32_t hits = 0;
+      for (std::int32_t t = 0; t < queued; ++t) {
+        const std::int32_t a = first[t], b = second[t];
+        const double d2 = distanceSquared(a, b), c = cut(a, b);
+        hit[hits] = t;
+        hits += d2 <= c * c ? 1 : 0;
+      }
+      for (std::int32_t h = 0; h < hits; ++h) {
+        const std::int32_t a = first[hit[h]], b = second[hit[h]];
+        if (allActive || tree.isActive(a) || tree.isActive(b)) emit(a, b, distanceSquared(a, b));
+      }
+      queued = 0;
+    }
+    void finish() { flush(); }
   };
   // The traversal, calling onPair as above.
   // pruneScale: pairs of crowded vertices are skipped when a coordinate difference exceeds
@@ -243,6 +293,15 @@ class Spacetree {
   void clear(int n, int nActive);  // forget the last build
   void resetLevels(const std::array<double, 3>& origin, double rootSize, int depth);
   void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
+  // Its steps: the level and sort key of every particle, and, after the sort, the sorted arrays
+  // and the levels' vertices; countMemory() sums the storage held.
+  template <class Record>
+  void keyParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel,
+                    const SortKeyPacking& packing, std::vector<Record>& records);
+  template <class Record>
+  void placeSorted(const std::vector<Record>& sorted, const SortKeyPacking& packing, const double (*x)[3],
+                   const double* radius, int n);
+  void countMemory();
   // Orders the particles [begin, end) of one crowded vertex; returns its bigBegin.
   std::int32_t orderCrowdedVertex(std::int32_t begin, std::int32_t end, const double (*x)[3], const double* radius);
   bool isActive(std::int32_t sorted) const { return sortedId_[sorted] < nActive_; }
@@ -301,10 +360,11 @@ class Spacetree {
   // Particles sorted by (level, vertex key), structure of arrays for streaming access.
   std::vector<double> sx_, sy_, sz_, sr_;
   std::vector<std::int32_t> sortedId_;
-  std::vector<std::int32_t> particleLevel_;  // by original index
+  std::vector<std::int8_t> particleLevel_;  // by original index (levels 0..kMaxSpacetreeLevel)
 
   // Scratch, kept to avoid allocation on every build.
-  std::vector<KeyedIndex> sortKeys_, sortScratch_;
+  std::vector<KeyedIndex> sortKeys_, sortScratch_;        // keys of more than 32 bits
+  std::vector<KeyedIndex32> sortKeys32_, sortScratch32_;  // else
   std::vector<int> populated_;  // levels hosting particles
   struct XAndId {
     double x;

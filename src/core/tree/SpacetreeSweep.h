@@ -23,7 +23,7 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
     if (!levels_[l].vertices.empty()) populated_.push_back(l);
   for (std::size_t f = 0; f < populated_.size(); ++f) {
     const int l = populated_[f];
-    const bool crowded = !levels_[l].boxes.empty();
+    const bool crowded = !levels_[l].crowds.empty();
     // A level without crowded vertices runs the plain loop (its own code).
     if (crowded)
       sweepLevel<true>(l, onPair, pruneScale, candidatePairs);
@@ -32,11 +32,12 @@ void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
     for (std::size_t c = 0; c < f; ++c) {
       const int m = populated_[c];
       stats_.levels[l].virtualLinks +=
-          crowded || !levels_[m].boxes.empty()
+          crowded || !levels_[m].crowds.empty()
               ? linkLevels<true>(m, l, onPair, pruneScale, candidatePairs, stats_.levels[l].linkTests)
               : linkLevels<false>(m, l, onPair, pruneScale, candidatePairs, stats_.levels[l].linkTests);
     }
   }
+  onPair.finish();
   stats_.candidatePairs = candidatePairs;
 }
 
@@ -121,7 +122,7 @@ void Spacetree::sweepLevel(int l, PairFunction& onPair, double pruneScale, std::
 
     // 1. Real particles of this vertex among themselves.
     if (kCrowded && v.sortedByX()) {
-      const double reach = (2.0 * v.maxSmallRadius + halo) * pruneScale;
+      const double reach = (2.0 * level.crowds[std::size_t(v.box)].maxSmallRadius + halo) * pruneScale;
       for (std::int32_t a = v.begin; a < v.bigBegin; ++a)
         for (std::int32_t b = a + 1; b < v.bigBegin && sx_[b] - sx_[a] <= reach; ++b) {
           if (!withinYZ(a, b, reach)) continue;
@@ -213,7 +214,7 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
     const bool allActive = v.active == v.end - v.begin;
     std::int32_t smallBegin = v.begin, smallEnd = v.bigBegin;  // the whole vertex if plain
     if (kCrowded && v.sortedByX()) {
-      const double pairReach = (sr_[q] + v.maxSmallRadius + halo) * pruneScale;
+      const double pairReach = (sr_[q] + fine.crowds[std::size_t(v.box)].maxSmallRadius + halo) * pruneScale;
       smallBegin = firstWithinX(v.begin, v.bigBegin, sx_[q], pairReach);
       smallEnd = endWithinX(smallBegin, v.bigBegin, sx_[q], pairReach);
     }
@@ -271,8 +272,9 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
   // The links of fine vertex v to crowded coarse vertex u: when v is within reach of u's box
   // on every axis, the particles in the x window of v.
   auto linkCrowded = [&](const Vertex& u, const Vertex& v, double vx, double vy, double vz) {
-    const Box& box = coarse.boxes[std::size_t(u.box)];
-    const double reach = (u.maxSmallRadius + linkReach) * (1.0 + kPruneMargin);
+    const Crowd& crowd = coarse.crowds[std::size_t(u.box)];
+    const Box& box = crowd.box;
+    const double reach = (crowd.maxSmallRadius + linkReach) * (1.0 + kPruneMargin);
     if (box.lo[0] - vx <= reach && vx - box.hi[0] <= reach && box.lo[1] - vy <= reach && vy - box.hi[1] <= reach &&
         box.lo[2] - vz <= reach && vz - box.hi[2] <= reach) {
       const std::int32_t first = firstWithinX(u.begin, u.bigBegin, vx, reach);
@@ -288,9 +290,11 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
   if (fine.vertices.size() < stats_.levels[m].realParticles) {
     // Few fine vertices (a level holding a handful of the smallest particles): each one looks
     // for the coarse vertices around its nearest coarse vertex instead.
-    for (const Vertex& v : fine.vertices) {
-      const double vx = origin_[0] + v.index.i * h, vy = origin_[1] + v.index.j * h, vz = origin_[2] + v.index.k * h;
-      const std::int64_t vc[3] = {v.index.i, v.index.j, v.index.k};
+    for (std::size_t w = 0; w < fine.vertices.size(); ++w) {
+      const Vertex& v = fine.vertices[w];
+      const VertexIndex vi = indexOf(fine, w);
+      const double vx = origin_[0] + vi.i * h, vy = origin_[1] + vi.j * h, vz = origin_[2] + vi.k * h;
+      const std::int64_t vc[3] = {vi.i, vi.j, vi.k};
       std::int64_t lo[3], hi[3];
       for (int d = 0; d < 3; ++d) {
         lo[d] = (vc[d] + half) / s - 1;
@@ -309,8 +313,10 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
       });
     }
   } else {
-    for (const Vertex& u : coarse.vertices) {
-      const std::int64_t uc[3] = {u.index.i, u.index.j, u.index.k};
+    for (std::size_t cu = 0; cu < coarse.vertices.size(); ++cu) {
+      const Vertex& u = coarse.vertices[cu];
+      const VertexIndex ui = indexOf(coarse, cu);
+      const std::int64_t uc[3] = {ui.i, ui.j, ui.k};
       std::int64_t near[2][3];
       for (int d = 0; d < 3; ++d) {
         near[0][d] = (uc[d] - 1) * s - half;
@@ -320,16 +326,17 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
       if (kCrowded && u.sortedByX()) {
         // A crowded coarse vertex: the fine vertices near its box scan the x window of its
         // ordered particles; the big ones go one by one.
-        const Box& box = coarse.boxes[std::size_t(u.box)];
-        const double reach = (u.maxSmallRadius + linkReach) * (1.0 + kPruneMargin);
+        const Crowd& crowd = coarse.crowds[std::size_t(u.box)];
+        const Box& box = crowd.box;
+        const double reach = (crowd.maxSmallRadius + linkReach) * (1.0 + kPruneMargin);
         std::int64_t lo[3], hi[3];
         for (int d = 0; d < 3; ++d) {
           lo[d] = std::max(near[0][d], indexBelow((box.lo[d] - reach - origin_[d]) * inverse));
           hi[d] = std::min(near[1][d], indexAbove((box.hi[d] + reach - origin_[d]) * inverse));
         }
         forEachVertexIn(fine, lo, hi, all2, all3, [&](std::int32_t w) {
-          const Vertex& v = fine.vertices[std::size_t(w)];
-          linkCrowded(u, v, origin_[0] + v.index.i * h, origin_[1] + v.index.j * h, origin_[2] + v.index.k * h);
+          const VertexIndex vi = indexOf(fine, std::size_t(w));
+          linkCrowded(u, fine.vertices[std::size_t(w)], origin_[0] + vi.i * h, origin_[1] + vi.j * h, origin_[2] + vi.k * h);
         });
         q = u.bigBegin;
       }
@@ -347,7 +354,7 @@ std::uint64_t Spacetree::sweepCrowdedPair(const Level& level, const Vertex& v, c
   const bool bothActive = v.active == v.end - v.begin && nb.active == nb.end - nb.begin;
   std::uint64_t comparisons = 0;
   // The ordinary particles: those of v near nb's box, and those of nb near theirs.
-  const double reach = (v.maxSmallRadius + nb.maxSmallRadius + halo) * pruneScale;
+  const double reach = (maxSmallRadius(level, v) + maxSmallRadius(level, nb) + halo) * pruneScale;
   if (4.0 * reach >= level.meshSize) {
     if (v.sortedByX() && nb.sortedByX()) {
       // Both in x order: a window of nb's per particle of v.

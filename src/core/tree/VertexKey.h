@@ -41,13 +41,19 @@ inline std::uint64_t levelVertexKey(int level, std::uint64_t vertexKey) {
 // bias), so the radix sort passes over fewer digits. fromSortKey gives the levelVertexKey.
 struct SortKeyPacking {
   int fieldBits = kVertexKeyBits;
+  int keyBits = 0;  // of a whole sort key: the level's bits and three fields
   explicit SortKeyPacking(int depth) {
     std::int64_t largest = 1;
     for (int l = 0; l < depth; ++l) largest *= 3;
     largest += 2 * kVertexKeyBias + 1;
     fieldBits = 1;
     while ((std::int64_t(1) << fieldBits) <= largest) ++fieldBits;
+    int levelBits = 0;
+    while ((1 << levelBits) <= depth) ++levelBits;
+    keyBits = levelBits + 3 * fieldBits;
   }
+  // Level of a sort key, and whether two sort keys name the same level.
+  int levelOf(std::uint64_t key) const { return int(key >> (3 * fieldBits)); }
   std::uint64_t toSortKey(int level, std::int64_t i, std::int64_t j, std::int64_t k) const {
     return (((((std::uint64_t(level) << fieldBits) | std::uint64_t(i + kVertexKeyBias)) << fieldBits) |
              std::uint64_t(j + kVertexKeyBias))

@@ -316,7 +316,8 @@ def case_rollback(R, np):
     cube_diag_stl(os.path.join(R.work, "cube_diag.stl"), EDGE)
     vt, dt, n = 0.02, 1e-4, 12
     with open(os.path.join(R.work, "adaptive.in"), "w") as f:
-        f.write("fix dtv all adapt/timestep creep 1.1 veto no rollback yes penetration 0.8\n"
+        # the rollback alone (no contact ceiling: dtcontact none)
+        f.write("fix dtv all adapt/timestep creep 1.1 dtcontact none veto no rollback yes penetration 0.8\n"
                 "thermo_style custom step time dt v_ncont v_hn v_hsum v_x1 v_x2 v_y2 v_vy1 v_vy2 f_dtv[5]\n"
                 "thermo_modify format float %%.17g\nrun %d\n" % n)
     procs = "2 1 1" if np == 2 else "1 1 1"

@@ -397,6 +397,8 @@ def main():
         for adapt, expect in (("fix dtv all adapt/timestep creep 1.1 rollback yes", "rollback yes needs eps > 0"),
                               ("fix dtv all adapt/timestep creep 1.1 eps 1e-4 penetration 0.5", "penetration is a rollback setting"),
                               ("fix dtv all adapt/timestep creep 1.1 dtcontact -1", "dtcontact must be > 0"),
+                              ("fix dtv all adapt/timestep creep 1.1 dtcontact stable",
+                               "dtcontact stable needs pair_style trimesh"),
                               ("fix dtv all adapt/timestep creep 1.1 rollback maybe", "rollback must be yes or no"),
                               ("fix dtv all adapt/timestep creep 1.1 eps -1", "eps must be >= 0"),
                               ("fix dtv all adapt/timestep creep 1.1 dtcontact 1e-6 vimpact 1",

@@ -36,6 +36,7 @@ RANKS 2 splits the box in x (the pair on the rank boundary) and compares with th
 import argparse
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -186,6 +187,47 @@ def case_collide(a, procs):
                   "2 ranks (contact on the rank boundary): the 1-rank run's final v_rel to %.1e" % diff)
 
 
+def case_stable(a, procs):
+    """The default contact ceiling with pair_style trimesh (dtcontact stable): in contact the step
+    is the largest stable step the pair style prints for the type pair, in flight dtmax; with
+    dtcontact none the same collision runs its contact steps above it."""
+    rotated_cube(os.path.join(a.workdir, "cube_diag.stl"), 0.01, True)
+    rotated_cube(os.path.join(a.workdir, "cube.stl"), 0.006, False)
+    grid = "2 1 1" if procs > 1 else "* * *"
+    base = dict(vA=0.5, vB=-0.5, procs=grid, every=1, dt=1e-4, n=120)
+    logs = {}
+    for ceiling in ("", "dtcontact none "):
+        name = "stable_%s%d" % ("none_" if ceiling else "", procs)
+        adapt = "fix dtv all adapt/timestep creep 1.1 %sveto yes file dt_%s.txt" % (ceiling, name)
+        rc, _, logs[ceiling] = run(a, DECK, name, dict(base, adapt=adapt), procs)
+        check(rc == 0, "cubes collide with 'creep 1.1 %sveto yes' (dtmax 1e-4 s)" % ceiling)
+        if rc:
+            return
+    text = open(logs[""], errors="replace").read()
+    m = re.search(r"type pair 1 2: .*largest stable time step ([0-9.e+-]+) s", text)
+    check(m is not None, "the pair style prints the stable step of type pair 1 2")
+    if not m:
+        return
+    stable = float(m.group(1))
+
+    def contact_steps(ceiling):
+        names, rows = thermo(logs[ceiling])
+        ncont, dt = col(names, rows, "ncont"), col(names, rows, "Dt")
+        return dt[ncont > 0], dt
+    in_contact, dt = contact_steps("")
+    # the printout has 4 digits: the ceiling equals it to that precision
+    check(len(in_contact) >= 3 and np.all(in_contact <= stable * (1 + 1e-3)) and abs(in_contact.max() / stable - 1) < 1e-3,
+          "%d steps in contact, all <= the printed stable step %.4g s (largest %.5g)"
+          % (len(in_contact), stable, in_contact.max() if len(in_contact) else 0))
+    check(abs(dt.max() - 1e-4) < 1e-16, "in flight the step reaches dtmax (%.3g s)" % dt.max())
+    limits = [l.split()[-1] for l in open(os.path.join(a.workdir, "dt_stable_%d.txt" % procs))
+              if not l.startswith("#")]
+    check("stable" in limits, "the file's limit column names 'stable' (%d steps)" % limits.count("stable"))
+    free, _ = contact_steps("dtcontact none ")
+    check(len(free) and free.max() > 2 * stable,
+          "with dtcontact none the contact steps reach %.3g s > 2 x the stable step" % (free.max() if len(free) else 0))
+
+
 def case_veto(a, procs, moving=False):
     """moving: the cube is an obstacle that fix move/trimesh drives at v into the rod at rest
     (the same relative motion; the veto must see the obstacle's prescribed velocity)."""
@@ -195,7 +237,8 @@ def case_veto(a, procs, moving=False):
     grid = "2 1 1" if procs > 1 else "* * *"
     P, v, dtmax = 5e-5, 4.0, 2e-5
     name = "veto_%s%d" % ("moving_" if moving else "", procs)
-    adapt = "fix dtv all adapt/timestep creep 1.1 eps %g veto yes file dt_%s.txt" % (P, name)
+    # the veto alone (no contact ceiling: dtcontact none)
+    adapt = "fix dtv all adapt/timestep creep 1.1 dtcontact none eps %g veto yes file dt_%s.txt" % (P, name)
     bodies = dict(shapeA="file rod.stl", vB=-v)
     if moving:   # an obstacle sits where its file puts it: the cube's file centred at xB
         rotated_cube(os.path.join(a.workdir, "cube_diag_moving.stl"), 0.01, True, shift=0.0105)
@@ -259,9 +302,10 @@ def case_rollback(a, procs):
     grid = "2 1 1" if procs > 1 else "* * *"
     vC, wC = 0.3, 40.0
     # undamped cubes at 2 m/s, dtmax 1e-4 s (tc/2.2), veto off: the fifth step enters the halo
-    # 0.96 eps deep, beyond the bound 0.8 eps (the closed-form peak is 0.71 eps): redone
-    adapt = ("fix dtv all adapt/timestep creep 1.1 veto no rollback yes penetration 0.8 file dt_rollback_%d.txt"
-             % procs)
+    # 0.96 eps deep, beyond the bound 0.8 eps (the closed-form peak is 0.71 eps): redone (the
+    # rollback alone: no contact ceiling, dtcontact none)
+    adapt = ("fix dtv all adapt/timestep creep 1.1 dtcontact none veto no rollback yes penetration 0.8 "
+             "file dt_rollback_%d.txt" % procs)
     rc, _, log = run(a, DECK, "rollback_%d" % procs, dict(xA=-0.00917, xB=0.00917, vA=1.0, vB=-1.0, D=0, vC=vC,
                                                           wC=wC, procs=grid, dt=1e-4, n=40, adapt=adapt,
                                                           stats=stats()), procs)
@@ -297,7 +341,8 @@ def case_pour(a, procs):
     subprocess.run([sys.executable, os.path.join(ROOT, "inputs", "pour", "make_pour.py"), a.workdir,
                     "--half", "0.0085"], check=True)
     T, dtc = 0.2, 5e-6
-    common = dict(meshdir=a.workdir, nxy=2, nz=9, a=0.008, zlo=0.006, every=50, th=2000)
+    common = dict(meshdir=a.workdir, deckdir=os.path.dirname(POUR), nxy=2, nz=9, a=0.008, zlo=0.006, every=50,
+                  th=2000)
     rc, _, logf = run(a, POUR, "pour_fixed", dict(common, dt=dtc, n=int(round(T / dtc)), out="fixed"))
     adapt = "fix dtv all adapt/timestep creep 1.1 dtcontact %g veto yes" % dtc
     rc2, _, loga = run(a, POUR, "pour_adapt", dict(common, dt=1e-4, n=500, tend=T, out="adapt", every=1,
