@@ -8,7 +8,8 @@ inputs/heap/in.heap_spheres (pair gran hertz with tangential history, the same m
 of the grains' volume-equivalent radius, no rolling friction): a side x side x side block
 (spacing 6.4 mm; 10 = 1000 grains by default) released just above a 0.4 m square floor
 collapses into a heap; each deck runs in chunks of `--chunk` steps of `--dt` until the kinetic
-energy at a chunk end is below 1e-9 of the largest one at a chunk end (or `--chunks` chunks).
+energy has stayed below 1e-9 of the largest one at a chunk end at `--held` consecutive chunk ends
+(or `--chunks` chunks).
 
 As context only, `spheres_rolling`: the same spheres with LIGGGHTS' rolling friction
 (`rolling_friction cdt`, coefficientRollingFriction 0.1), the usual stand-in for the shape's
@@ -16,7 +17,9 @@ resistance to rolling.
 
 Measured per run: grains left (none may be lost for the grains; spheres that roll off the floor
 leave the box), simulated time, kinetic energy at the end / its largest value over the whole
-thermo record, whether it stands (that ratio < 1e-9), heap height, and the angle of repose: the
+thermo record, whether it stands (below 1e-9 of the peak at the last `--held` chunk ends; how
+many consecutive chunk ends were below at the end: `held`), heap height, and the angle of
+repose: the
 heap's axis is the vertical through the particles' mean x, y; particles are binned by their
 distance from it (bins of one grain diameter); the surface is the highest particle top (z + r)
 per bin, and the angle is the slope of a least-squares line through the surface points between
@@ -25,11 +28,12 @@ diameter): the cone's flank, without the rounded top, the toe and the skirt. A h
 than that layer has no angle (nan: "no heap").
 
     bench/heap_repose.py [--exe build/liggghts-spacetree] [--workdir build/heap_repose]
-                         [--side 10] [--dt 1e-4] [--chunk 500] [--chunks 400]
+                         [--side 10] [--dt 1e-4] [--chunk 500] [--chunks 400] [--held 5]
                          [--only grains|spheres|spheres_rolling] [--analyze] [--replot]
 
-Writes bench/results/heap_repose.csv (surface points of both heaps), heap_repose_summary.csv
-and heap_repose.png. --analyze measures runs already in the work dir (a run stopped before it
+Writes bench/results/heap_repose.csv (surface points of both heaps), heap_repose_summary.csv,
+heap_repose_ke.csv (kinetic energy at every chunk end: J and over the peak so far) and
+heap_repose.png. --analyze measures runs already in the work dir (a run stopped before it
 stood: its last chunk's heap_latest.dump); --replot redraws the figure from the CSVs.
 """
 
@@ -99,6 +103,27 @@ def thermo_rows(log):
     return rows
 
 
+def chunk_rows(log):
+    """(chunk, time, ke, peak so far, consecutive chunk ends below 1e-9 of it or None) of every
+    "HEAP chunk" line; the time is that of the last thermo line before it (the chunk's end)."""
+    out = []
+    cols, time_now = None, float("nan")
+    for line in log.splitlines():
+        w = line.split()
+        if w and w[0] == "Step":
+            cols = w
+        elif cols and len(w) == len(cols):
+            try:
+                time_now = float(w[cols.index("Time")])
+            except ValueError:
+                pass
+        elif line.startswith("HEAP chunk"):
+            m = re.match(r"HEAP chunk (\d+) ke (\S+) peak (\S+)(?: below (\d+))?", line)
+            out.append((int(m.group(1)), time_now, float(m.group(2)), float(m.group(3)),
+                        int(m.group(4)) if m.group(4) is not None else None))
+    return out
+
+
 def positions(path):
     with open(path) as f:
         lines = f.read().split("ITEM: ATOMS")[1].splitlines()[1:]
@@ -130,11 +155,11 @@ def repose(points, radius):
     return surface, height, math.degrees(math.atan(-slope))
 
 
-def plot(summary, surfaces, out, released):
+def plot(summary, surfaces, series, out, released, held):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.4, 4.0))
+    fig, (ax, ke_ax) = plt.subplots(1, 2, figsize=(11.0, 4.0))
     for kind, style in (("grains", "o-"), ("spheres", "s--"), ("spheres_rolling", "^:")):
         pts = [(float(r), float(z)) for k, r, z in surfaces if k == kind]
         if not pts:
@@ -145,6 +170,14 @@ def plot(summary, surfaces, out, released):
         stands = "stands" if int(float(s["stands"])) else "KE %.2g of peak" % float(s["ke_ratio"])
         ax.plot([1e3 * r for r, _ in pts], [1e3 * z for _, z in pts], style, ms=3,
                 label="%s: %s, %d left, %s" % (kind, shape, int(float(s["particles"])), stands))
+        ke = [(t, ke / peak) for k, _, t, ke, peak, _ in series if k == kind]
+        if ke:
+            ke_ax.semilogy([t for t, _ in ke], [r for _, r in ke], style, ms=2, label=kind)
+    ke_ax.axhline(1e-9, color="k", lw=0.8, ls=":")
+    ke_ax.set_xlabel("time (s)")
+    ke_ax.set_ylabel("kinetic energy / its peak (chunk ends)")
+    ke_ax.set_title("stands: below 1e-9 at %d consecutive chunk ends" % held)
+    ke_ax.legend()
     ax.set_xlabel("distance from the heap axis (mm)")
     ax.set_ylabel("surface height (mm)")
     ax.set_title("Heap of %d dented grains vs spheres of the same volume" % released)
@@ -161,6 +194,8 @@ def main():
     ap.add_argument("--side", type=int, default=10, help="grains per side of the released block (even)")
     ap.add_argument("--dt", type=float, default=1e-4, help="time step (s)")
     ap.add_argument("--chunk", type=int, default=500, help="steps per chunk")
+    ap.add_argument("--held", type=int, default=5,
+                    help="consecutive chunk ends below 1e-9 of the peak that count as standing")
     ap.add_argument("--only", choices=list(KINDS))
     ap.add_argument("--replot", action="store_true")
     ap.add_argument("--analyze", action="store_true",
@@ -174,13 +209,22 @@ def main():
         summary = {r["kind"]: r for r in csv.DictReader(open(out + "_summary.csv"))}
         surfaces = [(r["kind"], r["r_m"], r["z_m"]) for r in csv.DictReader(open(out + ".csv"))]
         released = int(float(summary["grains"]["particles"])) + int(float(summary["grains"]["lost"]))
-        plot(summary, surfaces, out, released)
+        series = [(r["kind"], int(r["chunk"]), float(r["time_s"]), float(r["ke_J"]),
+                   float(r["ke_J"]) / float(r["ke_over_peak"]), None)
+                  for r in csv.DictReader(open(out + "_ke.csv"))] if os.path.exists(out + "_ke.csv") else []
+        plot(summary, surfaces, series, out, released, a.held)
         return 0
     os.makedirs(a.workdir, exist_ok=True)
-    summary, surfaces = {}, []
+    summary, surfaces, series = {}, [], []
     if os.path.exists(out + "_summary.csv"):   # keep the other kind's stored result with --only
         summary = {r["kind"]: r for r in csv.DictReader(open(out + "_summary.csv"))}
+        for r in summary.values():
+            r.setdefault("held", "")
         surfaces = [(r["kind"], r["r_m"], r["z_m"]) for r in csv.DictReader(open(out + ".csv"))]
+    if os.path.exists(out + "_ke.csv"):
+        series = [(r["kind"], int(r["chunk"]), float(r["time_s"]), float(r["ke_J"]),
+                   float(r["ke_J"]) / float(r["ke_over_peak"]), int(r["below"]) if r["below"] else None)
+                  for r in csv.DictReader(open(out + "_ke.csv"))]
     grain_radius = None
     for kind in KINDS:
         if a.only and kind != a.only:
@@ -188,7 +232,7 @@ def main():
         wd = os.path.join(a.workdir, kind)
         os.makedirs(wd, exist_ok=True)
         write_stl(os.path.join(wd, "floor.stl"), floor_triangles())
-        variables = dict(chunks=a.chunks, side=a.side, dt=a.dt, chunk=a.chunk, **KINDS[kind][1])
+        variables = dict(chunks=a.chunks, side=a.side, dt=a.dt, chunk=a.chunk, held=a.held, **KINDS[kind][1])
         if kind != "grains":
             if grain_radius is None:
                 grain_radius = float(summary["grains"]["radius_m"])
@@ -207,6 +251,9 @@ def main():
             grain_radius = radius
         rows = thermo_rows(log)
         peak = max(ke for _, _, ke in rows)
+        chunks = chunk_rows(log)
+        series = [s for s in series if s[0] != kind] + [(kind,) + c for c in chunks]
+        held = chunks[-1][4] if chunks and chunks[-1][4] is not None else int(rows[-1][2] < 1e-9 * peak)
         final = os.path.join(wd, "heap_final.dump")
         points = positions(final if os.path.exists(final) else os.path.join(wd, "heap_latest.dump"))
         surface, height, angle = repose(points, radius)
@@ -217,7 +264,8 @@ def main():
             print("%s: stopped by a lost particle after its last dump" % kind)
         summary[kind] = dict(kind=kind, particles=len(points), lost=lost,
                              time_s=rows[-1][0], ke_final_J=rows[-1][2], ke_peak_J=peak,
-                             ke_ratio=rows[-1][2] / peak, stands=int(rows[-1][2] < 1e-9 * peak), radius_m=radius, height_m=height,
+                             ke_ratio=rows[-1][2] / peak, stands=int(held >= a.held), held=held,
+                             radius_m=radius, height_m=height,
                              angle_deg=angle, wall_s=wall, load="%.1f-%.1f" % (load0, load1))
         print("%s: %d left, %.3f s simulated, KE %.3g of its peak, height %.2f mm, angle %.1f deg, %.0f s"
               % (kind, len(points), rows[-1][0], rows[-1][2] / peak, 1e3 * height, angle, wall))
@@ -228,14 +276,19 @@ def main():
         for k, r, z in surfaces:
             w.writerow([k, r, z])
     with open(out + "_summary.csv", "w", newline="") as f:
-        fields = ["kind", "particles", "lost", "time_s", "ke_final_J", "ke_peak_J", "ke_ratio", "stands", "radius_m",
+        fields = ["kind", "particles", "lost", "time_s", "ke_final_J", "ke_peak_J", "ke_ratio", "stands", "held", "radius_m",
                   "height_m", "angle_deg", "wall_s", "load"]
         w = csv.DictWriter(f, fieldnames=fields)
         w.writeheader()
         for kind in KINDS:
             if kind in summary:
                 w.writerow({k: summary[kind][k] for k in fields})
-    plot(summary, surfaces, out, a.side ** 3)
+    with open(out + "_ke.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["kind", "chunk", "time_s", "ke_J", "ke_over_peak", "below"])
+        for kind, k, t, ke, peak_so_far, below in series:
+            w.writerow([kind, k, t, ke, ke / peak_so_far, "" if below is None else below])
+    plot(summary, surfaces, series, out, a.side ** 3, a.held)
     return 0
 
 
