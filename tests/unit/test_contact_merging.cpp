@@ -70,6 +70,11 @@ TEST(ContactMerging, CopiesOfOneContactCountOnce) {
   const Springs s = merged({raw(0.0, kPenetration), raw(0.0, kPenetration), raw(0.0, kPenetration)});
   EXPECT_EQ(s.points, 1u);
   EXPECT_NEAR(s.load, kPenetration, 1e-12 * kPenetration);
+  // a face lying on a face: the kernel's point lies anywhere between the face's corners; within
+  // half a merge length of a corner's contact it is that contact again, not a second spring
+  const Springs face = merged({raw(0.0, kPenetration), raw(0.45 * kMerge, kPenetration)});
+  EXPECT_EQ(face.points, 1u);
+  EXPECT_NEAR(face.load, kPenetration, 1e-12 * kPenetration);
 }
 
 TEST(ContactMerging, ContactsAMergeLengthApartCountInFull) {

@@ -3,6 +3,7 @@
 #include "contact/MeshContact.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace spacetree::contact {
 
@@ -56,7 +57,11 @@ double kinship(const ContactPoint& a, const ContactPoint& b, double mergeDistanc
   const double c = a.normal.dot(b.normal);
   if (!(c > cosine)) return 0.0;
   const double u = cosine < 1.0 ? std::min(1.0, (c - cosine) / (1.0 - cosine)) : 1.0;
-  const double near = 1.0 - t2;
+  // copies up to half the merge length (the kernel's point of a face lying on a face lies anywhere
+  // between the face's corners), then smoothly distinct
+  const double t = std::sqrt(t2);
+  const double v = t < 0.5 ? 0.0 : 2.0 * t - 1.0;
+  const double near = 1.0 - v * v;
   return near * near * u * u * (3.0 - 2.0 * u);
 }
 

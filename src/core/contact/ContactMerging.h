@@ -36,7 +36,9 @@ bool isLocalMinimum(const geometry::RigidShape& shape, int t, const Eigen::Vecto
 // past mergeDistance, a raw contact entered the halo; a resting grain rocked on for ever with a
 // jump of its force as large as its weight, bench/heap_repose.py): each raw contact i counts with
 // the share s_i = p_i / sum_j K_ij p_j of itself (K_ii = 1), K_ij = phi(|x_i - x_j| / mergeDistance)
-// psi(n_i . n_j), phi(t) = (1 - t^2)^2 for t < 1 else 0, psi rising smoothly from 0 at
+// psi(n_i . n_j), phi(t) = 1 up to t = 1/2 (the kernel's point of a face lying on a face lies
+// anywhere between the face's corners: within half a merge length of a corner's contact it is
+// that contact again), then (1 - (2t - 1)^2)^2, 0 from t = 1; psi rising smoothly from 0 at
 // mergeNormalCosine to 1 at parallel normals: copies of one contact (K = 1) share one contact's
 // force, raw contacts a merge length apart or with normals beyond the cosine count in full, and in
 // between the count changes smoothly. A point's weight is sum over its raw contacts of s_i p_i
