@@ -29,15 +29,12 @@ double Spacetree::requiredMeshSize(double radius) const {
 }
 
 int Spacetree::hostLevel(double required) const {
-  // Finest level whose mesh is still big enough: drop as far as the particle fits.
-  const int finest = int(levels_.size()) - 1;
-  int l = finest;
-  if (required > 0.0) {
-    const double guess = std::floor(std::log(rootSize_ / required) / std::log(3.0));
-    l = int(std::clamp(guess, 0.0, double(finest)));
-  }
-  while (l > 0 && levels_[l].meshSize < required) --l;
-  while (l < finest && levels_[l + 1].meshSize >= required) ++l;
+  // Finest level whose mesh is still big enough: drop as far as the particle fits. Mesh sizes
+  // fall with the level, so that level is the count of levels below the root whose mesh fits
+  // (a branch-free count: continuous sizes would mispredict a search, and a logarithm per
+  // particle costs more).
+  int l = 0;
+  for (int k = 1; k < int(levels_.size()); ++k) l += meshSizes_[k] >= required ? 1 : 0;
   return l;
 }
 
@@ -71,7 +68,8 @@ void Spacetree::resetLevels(const std::array<double, 3>& origin, double rootSize
   levels_.resize(std::size_t(depth) + 1);
   stats_.levels.resize(levels_.size());
   for (int l = 0; l <= depth; ++l) {
-    levels_[l].meshSize = meshSizeOfLevel(rootSize, l);
+    levels_[l].meshSize = meshSizes_[l] = meshSizeOfLevel(rootSize, l);
+    inverseMeshSizes_[l] = 1.0 / meshSizes_[l];
     stats_.levels[l].meshSize = levels_[l].meshSize;
   }
 }
@@ -135,12 +133,12 @@ void Spacetree::keyParticles(const double (*x)[3], const double* radius, int n, 
                              const SortKeyPacking& packing, std::vector<Record>& records) {
   const int levelCount = int(levels_.size());
   records.resize(std::size_t(n));
-  double lastRadius = -1.0;  // radii repeat (monodisperse species): skip the log
+  double lastRadius = -1.0;  // radii repeat (monodisperse species): skip the level search
   int lastLevel = 0;
   for (int i = 0; i < n; ++i) {
     // A caller's level may be coarser than the finest admissible one, never finer. Mesh sizes
     // fall with the level, so a level whose mesh still fits the particle is at or above the
-    // finest admissible one: taken as it is, without the level search (its logarithm).
+    // finest admissible one: taken as it is, without the level search.
     int l;
     const int wanted = hostLevelOf ? hostLevelOf[i] : -1;
     if (wanted >= 0 && wanted < levelCount && levels_[wanted].meshSize >= requiredMeshSize(radius[i])) {
@@ -153,7 +151,7 @@ void Spacetree::keyParticles(const double (*x)[3], const double* radius, int n, 
       l = hostLevelOf ? std::clamp(hostLevelOf[i], 0, lastLevel) : lastLevel;
     }
     particleLevel_[i] = std::int8_t(l);
-    const double inv = 1.0 / levels_[l].meshSize;
+    const double inv = inverseMeshSizes_[l];
     const std::int64_t vi = nearestVertexCoordinate(x[i][0], origin_[0], inv);
     const std::int64_t vj = nearestVertexCoordinate(x[i][1], origin_[1], inv);
     const std::int64_t vk = nearestVertexCoordinate(x[i][2], origin_[2], inv);

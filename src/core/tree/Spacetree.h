@@ -368,6 +368,8 @@ class Spacetree {
   double rootSize_ = 0.0;
   std::array<double, 3> origin_{0.0, 0.0, 0.0};
   std::vector<Level> levels_;
+  // Of levels_, contiguous (hostLevel, keyParticles).
+  double meshSizes_[kMaxSpacetreeLevel + 1] = {}, inverseMeshSizes_[kMaxSpacetreeLevel + 1] = {};
   int nActive_ = 0;
 
   // Particles sorted by (level, vertex key), structure of arrays for streaming access.
