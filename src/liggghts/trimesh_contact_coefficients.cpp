@@ -2,8 +2,10 @@
 
 #include "trimesh_contact_coefficients.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "atom.h"
@@ -41,7 +43,8 @@ FixPropertyGlobal *TrimeshContactCoefficients::material(const char *name, bool p
   if (!f) {
     const std::string msg = std::string("Pair style trimesh: ") + why + " needs fix property/global " +
                             name + (pair ? " peratomtypepair" : " peratomtype") +
-                            " (or the explicit pair_style keyword)";
+                            // where a keyword can stand for it (`why` names that keyword)
+                            (strstr(why,"pair_style keyword") ? " (or the explicit pair_style keyword)" : "");
     error->all(FLERR,msg.c_str());
   }
   FixPropertyGlobal *g = static_cast<FixPropertyGlobal *>(f);
@@ -140,6 +143,22 @@ cm::ContactParameters TrimeshContactCoefficients::parameters(int i, int j,
     p.set("tangentialDamping",spec.damping != "none"
           ? cm::tangentialDampingFor(stiffness,p.values().at("damping"),kt) : 0.0);
   }
+  if (spec.rolling != "none") {
+    const double mur = per_pair("coefficientRollingFriction",i,j,"rolling_friction epsd");
+    check("coefficientRollingFriction",mur,mur >= 0,">= 0");
+    p.set("rollingFriction",mur);
+    // the dashpot's damping ratio; without coefficientRollingViscousDamping the one of the
+    // tangential dashpot (the normal restitution for an oscillation damped throughout)
+    double eta = 0.0;
+    if (modify->find_fix_property("coefficientRollingViscousDamping","property/global","peratomtypepair",
+                                  0,0,"pair_style trimesh",false)) {
+      eta = per_pair("coefficientRollingViscousDamping",i,j,"rolling_friction epsd");
+      check("coefficientRollingViscousDamping",eta,eta >= 0,">= 0");
+    } else if (spec.damping != "none") {
+      eta = cm::tangentialDampingFor(stiffness,p.values().at("damping"),1.0);
+    }
+    p.set("rollingDamping",eta);
+  }
   if (spec.cohesion != "none") {
     const double ced = per_pair("cohesionEnergyDensity",i,j,"cohesion sjkr");
     check("cohesionEnergyDensity",ced,ced >= 0,">= 0 (J/m^3)");
@@ -183,7 +202,19 @@ TrimeshContactCoefficients::timing(const cm::ContactModel &m, const TrimeshConta
   const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
   const double kt = m.tangential() ? m.tangential()->stiffness() : 0.0;
   const double Dt = m.tangential() ? m.tangential()->damping() : 0.0;
-  return cm::contactTiming(S,D,1.0 / inv_m,kt,Dt,1.0 / (inv_point(ti) + inv_point(tj)));
+  cm::ContactTiming t = cm::contactTiming(S,D,1.0 / inv_m,kt,Dt,1.0 / (inv_point(ti) + inv_point(tj)));
+  if (m.rolling() && s.rotation) {
+    // the rolling spring on a couple about the smallest moments, lever = bounding radius
+    const double rr = cm::effectiveRadius(ti->fixed ? kInf : ti->boundingRadius,
+                                          tj->fixed ? kInf : tj->boundingRadius);
+    const double inv_inertia = (ti->fixed ? 0.0 : 1.0 / ti->inertia.minCoeff()) +
+                               (tj->fixed ? 0.0 : 1.0 / tj->inertia.minCoeff());
+    const double kr = m.rolling()->stiffness(rr);
+    if (kr > 0.0)
+      t.stableStep = std::min(t.stableStep,cm::dampedStableStep(std::sqrt(kr * inv_inertia),
+                                                               m.rolling()->dampingRatio()));
+  }
+  return t;
 }
 
 std::vector<double> TrimeshContactCoefficients::stable_steps(const cm::ContactModelTable &table,
