@@ -280,28 +280,24 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
     ipage_contact_flag->reset();
     dpage_contact_hist->reset();
   }
+  // Chunks of known size (get: one call each); a count above neigh_modify one (size_pages
+  // prevents it) returns NULL before anything is written.
   for (int i = 0; i < nlocal; i++) {
     const int n = count[i];
-    int *neighptr = ipage->vget();
+    int *neighptr = ipage->get(n);
     if (!neighptr) error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
     ilist[i] = i;
     firstneigh[i] = neighptr;
     numneigh[i] = 0;  // the fill cursor below
-    ipage->vgot(n);
     if (fix_history) {
-      int *contact_flag_ptr = ipage_contact_flag->vget();
-      double *contact_hist_ptr = dpage_contact_hist->vget();
+      int *contact_flag_ptr = ipage_contact_flag->get(n);
+      double *contact_hist_ptr = dpage_contact_hist->get(dnum*n);
       if (!contact_flag_ptr || !contact_hist_ptr)
         error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
       first_contact_flag[i] = contact_flag_ptr;
       first_contact_hist[i] = contact_hist_ptr;
-      ipage_contact_flag->vgot(n);
-      dpage_contact_hist->vgot(dnum*n);
     }
   }
-  // an overflowing chunk is caught before anything is written into it
-  if (ipage->status() || (fix_history && (ipage_contact_flag->status() || dpage_contact_hist->status())))
-    error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
   list->inum = nlocal;
 
   const spacetree::NeighbourSearch::ListedPairs &pairs = st.pairs;
