@@ -89,12 +89,15 @@ void Spacetree::clear(int n, int nActive) {
     level.occupancyBuilt = false;
   }
   stats_ = SpacetreeStatistics{};
-  particleLevel_.assign(std::size_t(std::max(n, 0)), 0);
-  sx_.clear();
-  sy_.clear();
-  sz_.clear();
-  sr_.clear();
-  sortedId_.clear();
+  // Sized, not cleared: placeParticles writes every entry (clearing would zero-fill them all
+  // again on every build).
+  const std::size_t size = std::size_t(std::max(n, 0));
+  particleLevel_.resize(size);
+  sx_.resize(size);
+  sy_.resize(size);
+  sz_.resize(size);
+  sr_.resize(size);
+  sortedId_.resize(size);
 }
 
 void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive) {
@@ -188,12 +191,7 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
 template <class Record>
 void Spacetree::placeSorted(const std::vector<Record>& sorted, const SortKeyPacking& packing, const double (*x)[3],
                             const double* radius, int n) {
-  sx_.resize(std::size_t(n));
-  sy_.resize(std::size_t(n));
-  sz_.resize(std::size_t(n));
-  sr_.resize(std::size_t(n));
-  sortedId_.resize(std::size_t(n));
-  for (int s = 0; s < n; ++s) {
+  for (int s = 0; s < n; ++s) {  // the arrays have size n (clear)
     const int id = sorted[std::size_t(s)].index;
     sx_[s] = x[id][0];
     sy_[s] = x[id][1];
