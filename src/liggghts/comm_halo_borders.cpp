@@ -43,14 +43,21 @@ void Comm::halo_borders()
   std::vector<double> &reach = rule.pass_reach();
   const int size_message = size_border + 1;   // the atom's border data and its reach
   int iswap = 0, smax = 0, rmax = 0;
+  // A rank that sends in no direction (one rank, no periodic dimension) gets no ghosts either:
+  // no per-atom reach, only the classes' counts.
+  bool sends = false;
+  for (int dim = 0; dim < 3; dim++) sends = sends || sendneed[dim][0] > 0 || sendneed[dim][1] > 0;
+  if (!sends) std::vector<double>().swap(reach);
 
   for (int p = 0; p < npass; p++) {
     const int c = rule.pass_class(p);
-    const std::vector<int> &owned = rule.owned_of_class(c,nowned);
+    const std::vector<int> &owned = rule.owned_of_class(c,nowned,sends);
     const std::vector<double> &owned_reach = rule.owned_reach();
     const int first_ghost = nlocal + atom->nghost;   // this pass's ghosts start here
-    reach.assign(first_ghost,-1.0);
-    for (size_t k = 0; k < owned.size(); k++) reach[owned[k]] = owned_reach[k];
+    if (sends) {
+      reach.assign(first_ghost,-1.0);
+      for (size_t k = 0; k < owned.size(); k++) reach[owned[k]] = owned_reach[k];
+    }
     int sent = 0, received = 0;
 
     for (int dim = 0; dim < 3; dim++) {
@@ -116,7 +123,7 @@ void Comm::halo_borders()
         }
 
         const int first = nlocal + atom->nghost;
-        reach.resize(first + nrecv);
+        if (sends) reach.resize(first + nrecv);
         for (int k = 0; k < nrecv; k++) reach[first + k] = buf[k];
         if (ghost_velocity) avec->unpack_border_vel(nrecv,first,&buf[nrecv]);
         else avec->unpack_border(nrecv,first,&buf[nrecv]);

@@ -208,7 +208,7 @@ const pl::HaloSurface *MultilevelHalo::surface_of(int i)
   return surfaces_.back().get();
 }
 
-const std::vector<int> &MultilevelHalo::owned_of_class(int c, int nowned)
+const std::vector<int> &MultilevelHalo::owned_of_class(int c, int nowned, bool keep)
 {
   double **x = atom->x;
   owned_.clear();
@@ -220,8 +220,10 @@ const std::vector<int> &MultilevelHalo::owned_of_class(int c, int nowned)
     bool served = false;
     const double reach = reach_.reach(Eigen::Vector3d(x[i][0],x[i][1],x[i][2]),r,
                                       class_largest_[c],&served);
-    owned_.push_back(i);
-    owned_reach_.push_back(reach);
+    if (keep) {
+      owned_.push_back(i);
+      owned_reach_.push_back(reach);
+    }
     count.served += served;
     count.largest_reach = std::max(count.largest_reach,reach);
   }

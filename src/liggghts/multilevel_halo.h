@@ -49,8 +49,9 @@ class MultilevelHalo : protected Pointers {
   void begin();
   int passes() const { return int(pass_class_.size()); }
   int pass_class(int p) const { return pass_class_[p]; }
-  // Owned atoms [0, nowned) of class c, ascending; their reaches (same order).
-  const std::vector<int> &owned_of_class(int c, int nowned);
+  // Owned atoms [0, nowned) of class c, ascending; their reaches (same order). keep false:
+  // the class's counts only, nothing listed (a rank that sends nothing).
+  const std::vector<int> &owned_of_class(int c, int nowned, bool keep = true);
   const std::vector<double> &owned_reach() const { return owned_reach_; }
   // Ghosts [first, last) arrived in the pass of class c: partners of the finer classes.
   void add_partners(int first, int last, int c);

@@ -224,10 +224,30 @@ struct Partners {
   double **history;
 };
 
+// Calls f(begin, end) for each maximal contiguous run of the chunks [first[i], first[i] +
+// size(i)) of MyPage pages: consecutive chunks of one page touch, a new page starts a new run.
+template <class T, class Size, class F>
+void for_each_run(T *const *first, int nlocal, Size size, F f)
+{
+  T *begin = NULL, *end = NULL;
+  for (int i = 0; i < nlocal; i++) {
+    T *const p = first[i];
+    if (p != end) {
+      if (begin != end) f(begin,end);
+      begin = end = p;
+    }
+    end += size(i);
+  }
+  if (begin != end) f(begin,end);
+}
+
 // 4. LIGGGHTS' pages, filled as granular_bin_no_newton fills them: per owned atom its
 //    neighbours and, with contact history, the touching partners' history (zeros for new ones).
-//    Each atom's chunk of the page is taken first (its size is the judge's count), the listed
-//    pairs go straight into the chunks, and then each chunk is sorted and its history copied.
+//    Each atom's chunks (list, contact flags, history; sized by the judge's count) are taken
+//    first, the listed pairs go straight into them, then each list is sorted. Flags and
+//    history are zeroed and the touching marks cleared run by run over the pages, and only
+//    atoms that had partners look theirs up: per-entry branches on short lists of varying
+//    length cost more than these passes.
 void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partners, const int *tag,
                 int nlocal, Error *error)
 {
@@ -235,20 +255,19 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   MyPage<int> *ipage = list->ipage;
+  const int *count = st.count.data();
 
   FixContactHistory *fix_history = list->fix_history;
   NeighList *listgranhistory = fix_history ? list->listgranhistory : NULL;
-  int *npartner = NULL, **partner = NULL;
-  double **contacthistory = NULL;
+  const int *npartner = partners.count;
+  int **partner = partners.tag;
+  double **contacthistory = partners.history;
   int **first_contact_flag = NULL;
   double **first_contact_hist = NULL;
   MyPage<int> *ipage_contact_flag = NULL;
   MyPage<double> *dpage_contact_hist = NULL;
   int dnum = 0;
   if (fix_history) {
-    npartner = partners.count;
-    partner = partners.tag;
-    contacthistory = partners.history;
     first_contact_flag = listgranhistory->firstneigh;
     first_contact_hist = listgranhistory->firstdouble;
     ipage_contact_flag = listgranhistory->ipage;
@@ -257,15 +276,27 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
   }
 
   ipage->reset();
+  if (fix_history) {
+    ipage_contact_flag->reset();
+    dpage_contact_hist->reset();
+  }
+  // Chunks of known size (get: one call each); a count above neigh_modify one (size_pages
+  // prevents it) returns NULL before anything is written.
   for (int i = 0; i < nlocal; i++) {
-    int *neighptr = ipage->vget();
+    const int n = count[i];
+    int *neighptr = ipage->get(n);
     if (!neighptr) error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
     ilist[i] = i;
     firstneigh[i] = neighptr;
     numneigh[i] = 0;  // the fill cursor below
-    ipage->vgot(st.count[i]);
-    if (ipage->status())
-      error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
+    if (fix_history) {
+      int *contact_flag_ptr = ipage_contact_flag->get(n);
+      double *contact_hist_ptr = dpage_contact_hist->get(dnum*n);
+      if (!contact_flag_ptr || !contact_hist_ptr)
+        error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
+      first_contact_flag[i] = contact_flag_ptr;
+      first_contact_hist[i] = contact_hist_ptr;
+    }
   }
   list->inum = nlocal;
 
@@ -277,43 +308,32 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
   }
 
   if (fix_history) {
-    ipage_contact_flag->reset();
-    dpage_contact_hist->reset();
+    for_each_run(first_contact_flag,nlocal,[&](int i) { return count[i]; },
+                 [](int *b, int *e) { std::fill(b,e,0); });
+    for_each_run(first_contact_hist,nlocal,[&](int i) { return dnum*count[i]; },
+                 [](double *b, double *e) { std::fill(b,e,0.0); });
   }
   for (int i = 0; i < nlocal; i++) {
     const int n = numneigh[i];
     int *js = firstneigh[i];
     sort_neighbours(js,n);
-    if (!fix_history) {
-      for (int k = 0; k < n && js[k] < 0; k++) js[k] = ~js[k];
-      continue;
+    if (!fix_history || !npartner[i]) continue;
+    // the touching ones (marked ~j < 0) come first: a continued contact keeps its history
+    int *contact_flag_ptr = first_contact_flag[i];
+    double *contact_hist_ptr = first_contact_hist[i];
+    for (int k = 0; k < n && js[k] < 0; k++) {
+      const int j = ~js[k];
+      int m = 0;
+      while (m < npartner[i] && partner[i][m] != tag[j]) m++;
+      if (m == npartner[i]) continue;
+      contact_flag_ptr[k] = 1;
+      for (int d = 0; d < dnum; d++) contact_hist_ptr[k*dnum+d] = contacthistory[i][m*dnum+d];
     }
-    int *contact_flag_ptr = ipage_contact_flag->vget();
-    double *contact_hist_ptr = dpage_contact_hist->vget();
-    if (!contact_flag_ptr || !contact_hist_ptr)
-      error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
-    int nn = 0;
-    for (int k = 0; k < n; k++) {
-      const bool touching = js[k] < 0;
-      const int j = touching ? ~js[k] : js[k];
-      js[k] = j;
-      int m = npartner[i];
-      if (touching)
-        for (m = 0; m < npartner[i]; m++)
-          if (partner[i][m] == tag[j]) break;
-      if (m < npartner[i]) {
-        contact_flag_ptr[k] = 1;
-        for (int d = 0; d < dnum; d++) contact_hist_ptr[nn++] = contacthistory[i][m*dnum+d];
-      } else {
-        contact_flag_ptr[k] = 0;
-        for (int d = 0; d < dnum; d++) contact_hist_ptr[nn++] = 0.0;
-      }
-    }
-    first_contact_flag[i] = contact_flag_ptr;
-    first_contact_hist[i] = contact_hist_ptr;
-    ipage_contact_flag->vgot(n);
-    dpage_contact_hist->vgot(nn);
   }
+  // clear the touching marks (~j -> j) without a branch
+  for_each_run(firstneigh,nlocal,[&](int i) { return numneigh[i]; }, [](int *b, int *e) {
+    for (int *p = b; p < e; p++) *p ^= *p >> 31;
+  });
 }
 
 }

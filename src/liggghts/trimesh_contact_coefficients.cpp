@@ -185,6 +185,14 @@ cm::ContactModelTable TrimeshContactCoefficients::build(const TrimeshContactSett
   return cm::ContactModelTable();
 }
 
+/* D of the normal dashpot [sqrt(kg)/s] for the halo spring S: the damping ratio the damping
+   sub-model gives at S over sqrt(S/2) (k_n = S/2 per relative approach); 0 without damping. */
+
+static double dashpot_coefficient(const cm::ContactModel &m, double S)
+{
+  return m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
+}
+
 /* Contact time and largest stable step of one contact point of a type pair of grains and
    obstacles (both types with a template); the lightest contact point: translation plus rotation
    about the smallest moment, lever = bounding radius (rotation no: translation only). */
@@ -199,7 +207,7 @@ TrimeshContactCoefficients::timing(const cm::ContactModel &m, const TrimeshConta
     return 1.0 / t->mass + (s.rotation ? t->boundingRadius * t->boundingRadius / t->inertia.minCoeff() : 0.0);
   };
   const double S = m.normal().stiffness();
-  const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
+  const double D = dashpot_coefficient(m,S);
   const double kt = m.tangential() ? m.tangential()->stiffness() : 0.0;
   const double Dt = m.tangential() ? m.tangential()->damping() : 0.0;
   cm::ContactTiming t = cm::contactTiming(S,D,1.0 / inv_m,kt,Dt,1.0 / (inv_point(ti) + inv_point(tj)));
@@ -241,10 +249,10 @@ void TrimeshContactCoefficients::report(const cm::ContactModelTable &table,
       if (!table.has(i,j)) continue;
       const cm::ContactModel &m = table.at(i,j);
       const TrimeshTypeTemplate *ti = templ->type_template(i), *tj = templ->type_template(j);
+      const double S = m.normal().stiffness();
+      const double D = dashpot_coefficient(m,S);
       if (!ti || !tj) {
         // a sphere or a wall type: its mass is not the type's, the coefficients only
-        const double S = m.normal().stiffness();
-        const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
         char line[300];
         snprintf(line,sizeof(line),"  type pair %d %d (%s): stiffness %.4g N/m, damping %.4g sqrt(kg)/s, "
                  "tangential stiffness %.4g N/m\n",i,j,"with spheres or a wall's material",S,D,
@@ -252,8 +260,6 @@ void TrimeshContactCoefficients::report(const cm::ContactModelTable &table,
         text += line;
         continue;
       }
-      const double S = m.normal().stiffness();
-      const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
       const double kt = m.tangential() ? m.tangential()->stiffness() : 0.0;
       const cm::ContactTiming t = timing(m,s,ti,tj);
       smallest = std::min(smallest,t.stableStep);
