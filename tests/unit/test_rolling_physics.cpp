@@ -88,7 +88,7 @@ TEST(RollingEpsd, SpringGrowsWithTheRollingAngleUpToTheCapAndOpposesIt) {
   EXPECT_EQ(history[2], 0.0);
   // below the cap the dashpot 2 eta_r sqrt(I_r k_r) w_r adds to the spring
   EXPECT_NEAR(tau.x(), -(kr * 10 * dt + 2 * kEtaR * std::sqrt(c.rollingInertia * kr)) * 1e-3, 1e-12);
-  // on until the cap mu_r R_r F: the spring stays there and the dashpot is off
+  // on until the cap mu_r R_r F: the spring stays there, spring plus dashpot capped to it
   const double cap = kMuR * R * F;
   for (int s = 0; s < 2000; ++s) tau = law.torqueOnFirst(c, F, history, 1e-3);
   EXPECT_NEAR(Vector3d(history[0], history[1], history[2]).norm(), cap, 1e-12 * cap);
