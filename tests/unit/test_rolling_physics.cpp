@@ -102,6 +102,18 @@ TEST(RollingEpsd, SpringGrowsWithTheRollingAngleUpToTheCapAndOpposesIt) {
   EXPECT_NEAR(law.torqueOnFirst(c, 0.5 * F, history, dt).norm(), 0.5 * cap, 1e-12 * cap);
 }
 
+TEST(RollingEpsd, TorqueIsContinuousAtTheCap) {
+  // a spring at the cap within round-off, the contact turning back (unloading): the dashpot acts
+  // on either side of the cap, so round-off in |M_r| cannot switch the torque
+  const RollingEpsd law(coefficients());
+  const double F = 50.0, cap = kMuR * 0.1 * F;
+  const Contact c = pointContact(Vector3d(-1e-3, 0.0, 0.0));
+  double below[3] = {cap * (1 - 1e-15), 0, 0}, above[3] = {cap * (1 + 1e-15), 0, 0};
+  const Vector3d a = law.torqueOnFirst(c, F, below, 0.0), b = law.torqueOnFirst(c, F, above, 0.0);
+  EXPECT_LT(a.x(), cap * (1 - 1e-6));  // the dashpot unloads it
+  EXPECT_NEAR(a.x(), b.x(), 1e-12 * cap);
+}
+
 TEST(RollingEpsd, HistoryTurnsWithTheContactPlaneKeepingItsLength) {
   const RollingEpsd law(coefficients());
   double history[3] = {-0.2, 0.0, 0.0};
