@@ -28,7 +28,7 @@ diameter): the cone's flank, without the rounded top, the toe and the skirt. A h
 than that layer has no angle (nan: "no heap").
 
     bench/heap_repose.py [--exe build/liggghts-spacetree] [--workdir build/heap_repose]
-                         [--side 10] [--dt 1e-4] [--chunk 500] [--chunks 400] [--held 5]
+                         [--side 10] [--dt 7e-5] [--chunk 500] [--chunks 400] [--held 5]
                          [--only grains|spheres|spheres_rolling] [--analyze] [--replot]
 
 Writes bench/results/heap_repose.csv (surface points of both heaps), heap_repose_summary.csv,
@@ -192,7 +192,7 @@ def main():
     ap.add_argument("--workdir", default=os.path.join(ROOT, "build", "heap_repose"))
     ap.add_argument("--chunks", type=int, default=400)
     ap.add_argument("--side", type=int, default=10, help="grains per side of the released block (even)")
-    ap.add_argument("--dt", type=float, default=1e-4, help="time step (s)")
+    ap.add_argument("--dt", type=float, default=7e-5, help="time step (s)")
     ap.add_argument("--chunk", type=int, default=500, help="steps per chunk")
     ap.add_argument("--held", type=int, default=5,
                     help="consecutive chunk ends below 1e-9 of the peak that count as standing")

@@ -239,6 +239,8 @@ void PairTrimesh::settings(int narg, char **arg)
                "of tangential viscous (give friction MU alone)");
   if (cs.spec.tangential != "history" && !std::isnan(cs.tangential_stiffness))
     error->all(FLERR,"Illegal pair_style trimesh command: tangential_stiffness needs tangential history");
+  if (cs.spec.rolling != "none" && !model->rotation)
+    error->all(FLERR,"Illegal pair_style trimesh command: rolling_friction needs rotation yes");
   if (cs.spec.damping == "none" && !std::isnan(cs.damping))
     error->all(FLERR,"Illegal pair_style trimesh command: damping D with damping_model none");
   // the history store exists from here on (thermo may name it; a restart file fills it)
@@ -306,9 +308,10 @@ void PairTrimesh::init_style()
   if (comm->ghost_velocity == 0)
     error->all(FLERR,"Pair style trimesh requires ghost atoms store velocity: use 'communicate single vel yes'");
   if (force->newton_pair)
-    error->all(FLERR,model->settings.spec.tangential == "history"
+    error->all(FLERR,cm::historySizeOf(model->settings.spec) > 0
                ? "Pair style trimesh requires newton off (granular half list, forces on owned atoms; "
-                 "tangential history is kept on the owned atoms of each pair)"
+                 "the contact history of tangential history and rolling_friction epsd is kept on "
+                 "the owned atoms of each pair)"
                : "Pair style trimesh requires newton off (granular half list, forces on owned atoms)");
 
   templ = FixTrimeshTemplate::find(lmp,"Pair style trimesh");

@@ -3,7 +3,7 @@
    docs/pair_trimesh.md.
 
      pair_style trimesh eps E [model halo] [damping_model approach|none]
-                        [tangential none|viscous|history] [rolling_friction none]
+                        [tangential none|viscous|history] [rolling_friction none|epsd]
                         [cohesion none|sjkr] [stiffness S] [damping D] [friction MU [GAMMA]]
                         [tangential_stiffness KT] [method exact|penalty|hybrid] [iterations K]
                         [continuation C] [rotation yes|no] [threads N]

@@ -2,8 +2,10 @@
 
 #include "trimesh_contact_coefficients.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "atom.h"
@@ -41,7 +43,8 @@ FixPropertyGlobal *TrimeshContactCoefficients::material(const char *name, bool p
   if (!f) {
     const std::string msg = std::string("Pair style trimesh: ") + why + " needs fix property/global " +
                             name + (pair ? " peratomtypepair" : " peratomtype") +
-                            " (or the explicit pair_style keyword)";
+                            // where a keyword can stand for it (`why` names that keyword)
+                            (strstr(why,"pair_style keyword") ? " (or the explicit pair_style keyword)" : "");
     error->all(FLERR,msg.c_str());
   }
   FixPropertyGlobal *g = static_cast<FixPropertyGlobal *>(f);
@@ -140,6 +143,22 @@ cm::ContactParameters TrimeshContactCoefficients::parameters(int i, int j,
     p.set("tangentialDamping",spec.damping != "none"
           ? cm::tangentialDampingFor(stiffness,p.values().at("damping"),kt) : 0.0);
   }
+  if (spec.rolling != "none") {
+    const double mur = per_pair("coefficientRollingFriction",i,j,"rolling_friction epsd");
+    check("coefficientRollingFriction",mur,mur >= 0,">= 0");
+    p.set("rollingFriction",mur);
+    // the dashpot's damping ratio; without coefficientRollingViscousDamping the one of the
+    // tangential dashpot (the normal restitution for an oscillation damped throughout)
+    double eta = 0.0;
+    if (modify->find_fix_property("coefficientRollingViscousDamping","property/global","peratomtypepair",
+                                  0,0,"pair_style trimesh",false)) {
+      eta = per_pair("coefficientRollingViscousDamping",i,j,"rolling_friction epsd");
+      check("coefficientRollingViscousDamping",eta,eta >= 0,">= 0");
+    } else if (spec.damping != "none") {
+      eta = cm::tangentialDampingFor(stiffness,p.values().at("damping"),1.0);
+    }
+    p.set("rollingDamping",eta);
+  }
   if (spec.cohesion != "none") {
     const double ced = per_pair("cohesionEnergyDensity",i,j,"cohesion sjkr");
     check("cohesionEnergyDensity",ced,ced >= 0,">= 0 (J/m^3)");
@@ -166,6 +185,14 @@ cm::ContactModelTable TrimeshContactCoefficients::build(const TrimeshContactSett
   return cm::ContactModelTable();
 }
 
+/* D of the normal dashpot [sqrt(kg)/s] for the halo spring S: the damping ratio the damping
+   sub-model gives at S over sqrt(S/2) (k_n = S/2 per relative approach); 0 without damping. */
+
+static double dashpot_coefficient(const cm::ContactModel &m, double S)
+{
+  return m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
+}
+
 /* Contact time and largest stable step of one contact point of a type pair of grains and
    obstacles (both types with a template); the lightest contact point: translation plus rotation
    about the smallest moment, lever = bounding radius (rotation no: translation only). */
@@ -180,10 +207,22 @@ TrimeshContactCoefficients::timing(const cm::ContactModel &m, const TrimeshConta
     return 1.0 / t->mass + (s.rotation ? t->boundingRadius * t->boundingRadius / t->inertia.minCoeff() : 0.0);
   };
   const double S = m.normal().stiffness();
-  const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
+  const double D = dashpot_coefficient(m,S);
   const double kt = m.tangential() ? m.tangential()->stiffness() : 0.0;
   const double Dt = m.tangential() ? m.tangential()->damping() : 0.0;
-  return cm::contactTiming(S,D,1.0 / inv_m,kt,Dt,1.0 / (inv_point(ti) + inv_point(tj)));
+  cm::ContactTiming t = cm::contactTiming(S,D,1.0 / inv_m,kt,Dt,1.0 / (inv_point(ti) + inv_point(tj)));
+  if (m.rolling() && s.rotation) {
+    // the rolling spring on a couple about the smallest moments, lever = bounding radius
+    const double rr = cm::effectiveRadius(ti->fixed ? kInf : ti->boundingRadius,
+                                          tj->fixed ? kInf : tj->boundingRadius);
+    const double inv_inertia = (ti->fixed ? 0.0 : 1.0 / ti->inertia.minCoeff()) +
+                               (tj->fixed ? 0.0 : 1.0 / tj->inertia.minCoeff());
+    const double kr = m.rolling()->stiffness(rr);
+    if (kr > 0.0)
+      t.stableStep = std::min(t.stableStep,cm::dampedStableStep(std::sqrt(kr * inv_inertia),
+                                                               m.rolling()->dampingRatio()));
+  }
+  return t;
 }
 
 std::vector<double> TrimeshContactCoefficients::stable_steps(const cm::ContactModelTable &table,
@@ -210,10 +249,10 @@ void TrimeshContactCoefficients::report(const cm::ContactModelTable &table,
       if (!table.has(i,j)) continue;
       const cm::ContactModel &m = table.at(i,j);
       const TrimeshTypeTemplate *ti = templ->type_template(i), *tj = templ->type_template(j);
+      const double S = m.normal().stiffness();
+      const double D = dashpot_coefficient(m,S);
       if (!ti || !tj) {
         // a sphere or a wall type: its mass is not the type's, the coefficients only
-        const double S = m.normal().stiffness();
-        const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
         char line[300];
         snprintf(line,sizeof(line),"  type pair %d %d (%s): stiffness %.4g N/m, damping %.4g sqrt(kg)/s, "
                  "tangential stiffness %.4g N/m\n",i,j,"with spheres or a wall's material",S,D,
@@ -221,8 +260,6 @@ void TrimeshContactCoefficients::report(const cm::ContactModelTable &table,
         text += line;
         continue;
       }
-      const double S = m.normal().stiffness();
-      const double D = m.damping() ? m.damping()->dampingRatio(S) * std::sqrt(S / 2.0) : 0.0;
       const double kt = m.tangential() ? m.tangential()->stiffness() : 0.0;
       const cm::ContactTiming t = timing(m,s,ti,tj);
       smallest = std::min(smallest,t.stableStep);

@@ -1,7 +1,8 @@
 /* spacetree-dem: the contact model of pair_style trimesh for every type pair, from the
    pair_style keywords and the LIGGGHTS materials (fix property/global youngsModulus,
    poissonsRatio [peratomtype], coefficientRestitution, coefficientFriction,
-   cohesionEnergyDensity [peratomtypepair]); explicit keywords override the materials for every
+   coefficientRollingFriction, coefficientRollingViscousDamping, cohesionEnergyDensity
+   [peratomtypepair]); explicit keywords override the materials for every
    type pair. The mapping of materials to halo coefficients is the core's
    (contact_model/MaterialMapping.h); this file looks them up, checks them and says which one is
    missing or out of range, and prints per type pair the coefficients, the contact time and the

@@ -1,8 +1,9 @@
 // A tiny rigid-body driver for the core physics tests (no LIGGGHTS): symplectic Euler (forces
 // at x_n, then v_{n+1}, then x_{n+1}, the order of LIGGGHTS' nve integrators), all pairs
-// checked every step, forces from one ContactModel. With a model that keeps history, each
-// pair's contact points are matched to the previous step's (ContactHistoryMatcher, half the
-// de-duplication length) and carry their history slots, as pair_style trimesh does.
+// checked every step, forces and rolling torques from one ContactModel. With a model that keeps
+// history, each pair's contact points are matched to the previous step's
+// (ContactHistoryMatcher, half the de-duplication length) and carry their history slots, as
+// pair_style trimesh does.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -83,9 +84,11 @@ class RigidContactDriver {
           const ContactPoint& c = contacts_[k];
           const contact_model::Contact con =
               contact_model::makeContact(a, b, c.point, c.normal, c.weight * c.penetration);
-          const Eigen::Vector3d force =
-              model_.evaluate(con, slots ? slots + k * std::size_t(stride) : nullptr, dt).forceOnFirst;
-          dynamics::applyContactForce(a, b, c.point, force, loads[i], loads[j]);
+          const contact_model::ContactForces out =
+              model_.evaluate(con, slots ? slots + k * std::size_t(stride) : nullptr, dt);
+          dynamics::applyContactForce(a, b, c.point, out.forceOnFirst, loads[i], loads[j]);
+          loads[i].torque += out.torqueOnFirst;  // rolling: a couple, the second gets -tau
+          loads[j].torque -= out.torqueOnFirst;
           report.largestPenetration = std::max(report.largestPenetration, c.penetration);
         }
         report.contacts += contacts_.size();

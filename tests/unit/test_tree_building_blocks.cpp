@@ -1,4 +1,4 @@
-// The tree's building blocks: root cube, radix sort, vertex key set.
+// The tree's building blocks: root cube, radix sort, vertex key set, vertex bitmap.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 
 #include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
+#include "tree/VertexBitmap.h"
 #include "tree/VertexKeySet.h"
 
 using namespace spacetree;
@@ -145,4 +146,45 @@ TEST(GridGeometry, FinestMeshOfTheRootCubeFitsTheSmallestParticle) {
       ASSERT_LT(g.rootSize / 3.0, root * (1.0 + 1e-12)) << "one level fewer would do";
     }
   }
+}
+
+// The 27 vertices around any vertex of the index cube, their slots in the key-sorted list, and
+// whether any is occupied, as a brute-force search over the occupied set finds them, on sparse
+// and dense random sets, with vertices on the faces, edges and corners of the cube (where the
+// 3x3x3 reaches the padding and the 3-bit reads straddle words).
+TEST(VertexBitmap, FindsTheOccupiedVerticesAroundAVertexAndTheirSlots) {
+  std::mt19937_64 rng(41);
+  for (const std::int64_t last : {std::int64_t(1), std::int64_t(3), std::int64_t(9), std::int64_t(27)})
+    for (const double fill : {0.01, 0.2, 0.9}) {
+      std::uniform_int_distribution<std::int64_t> index(0, last);
+      std::uniform_real_distribution<double> u(0.0, 1.0);
+      std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t>> occupied;
+      for (std::int64_t i = 0; i <= last; ++i)
+        for (std::int64_t j = 0; j <= last; ++j)
+          for (std::int64_t k = 0; k <= last; ++k)
+            if (u(rng) < fill || (i == last && j == last && k == last)) occupied.insert({i, j, k});
+      std::vector<std::uint64_t> keys;
+      for (const auto& [i, j, k] : occupied) keys.push_back(packVertexKey(i, j, k));
+      ASSERT_TRUE(std::is_sorted(keys.begin(), keys.end()));
+      VertexBitmap bitmap;
+      bitmap.build(keys.data(), keys.size(), last);
+      for (std::int64_t i = 0; i <= last; ++i)
+        for (std::int64_t j = 0; j <= last; ++j)
+          for (std::int64_t k = 0; k <= last; ++k) {
+            std::vector<std::int32_t> expected, found;
+            for (std::size_t s = 0; s < keys.size(); ++s) {
+              const VertexIndex v = unpackVertexKey(keys[s]);
+              if (std::abs(v.i - i) <= 1 && std::abs(v.j - j) <= 1 && std::abs(v.k - k) <= 1)
+                expected.push_back(std::int32_t(s));
+            }
+            std::uint32_t around = bitmap.around(i, j, k);
+            while (around) {
+              const unsigned t = unsigned(__builtin_ctz(around));
+              around &= around - 1;
+              found.push_back(bitmap.slotAround(i, j, k, t));
+            }
+            ASSERT_EQ(found, expected) << "around (" << i << ", " << j << ", " << k << "), last " << last;
+            ASSERT_EQ(bitmap.anyAround(i, j, k), !expected.empty()) << "(" << i << ", " << j << ", " << k << ")";
+          }
+    }
 }

@@ -10,6 +10,11 @@ double inverseMassAt(const dynamics::RigidBody& body, const Eigen::Vector3d& poi
   return body.inverseMass + arm.dot(body.inverseInertia.cwiseProduct(arm));
 }
 
+double inverseInertiaAbout(const dynamics::RigidBody& body, const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d local = body.orientation.conjugate() * axis;
+  return local.dot(body.inverseInertia.cwiseProduct(local));
+}
+
 Contact makeContact(const dynamics::RigidBody& first, const dynamics::RigidBody& second,
                     const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double penetration) {
   Contact c;
@@ -27,6 +32,18 @@ Contact makeContact(const dynamics::RigidBody& first, const dynamics::RigidBody&
     const Eigen::Vector3d t = sliding / slidingNorm;
     const double inverseTangential = inverseMassAt(first, point, t) + inverseMassAt(second, point, t);
     c.tangentialMass = inverseTangential > 0.0 ? 1.0 / inverseTangential : 0.0;
+  }
+  c.relativeAngularVelocity = second.angularVelocity() - first.angularVelocity();
+  const double armFirst = first.isFixed() ? 0.0 : (point - first.position).norm();
+  const double armSecond = second.isFixed() ? 0.0 : (point - second.position).norm();
+  c.rollingRadius = armFirst > 0.0 && armSecond > 0.0 ? armFirst * armSecond / (armFirst + armSecond)
+                                                      : armFirst + armSecond;
+  const Eigen::Vector3d rolling = tangentialPart(c.relativeAngularVelocity, normal);
+  const double rollingNorm = rolling.norm();
+  if (rollingNorm > 0.0) {
+    const Eigen::Vector3d u = rolling / rollingNorm;
+    const double inverseRolling = inverseInertiaAbout(first, u) + inverseInertiaAbout(second, u);
+    c.rollingInertia = inverseRolling > 0.0 ? 1.0 / inverseRolling : 0.0;
   }
   return c;
 }

@@ -21,6 +21,13 @@
 // that resolves the spring resolves the dashpot (scaled by the centre-of-mass mass, a dashpot
 // on a lever arm is several times overdamped and beyond the integrator's limit c dt / m < 2 at
 // that step: resting grains then chatter on for ever, bench/resting_energy.cpp).
+//
+// Rolling: relativeAngularVelocity = omega_j - omega_i; its tangential part (normal component
+// removed) is the relative rolling. rollingRadius R_r = R_i R_j / (R_i + R_j), R_b = |point -
+// centre of b| the lever arm (a fixed obstacle contributes only the other body's). rollingInertia:
+// what a pure couple about the rolling axis u (the unit tangential relative angular velocity)
+// turns, 1/I_r = sum over the bodies of u . I_b^-1 u (about the centres: a rolling torque is a
+// couple and the lightest mode it drives; 0 without rolling).
 #pragma once
 
 #include <Eigen/Core>
@@ -37,11 +44,35 @@ struct Contact {
   double normalVelocity = 0.0;                                 // relativeVelocity . normal
   double effectiveMass = 0.0;                                  // along the normal [kg]
   double tangentialMass = 0.0;                                 // along the sliding [kg]
+  Eigen::Vector3d relativeAngularVelocity = Eigen::Vector3d::Zero();  // omega_j - omega_i [rad/s]
+  double rollingRadius = 0.0;                                  // R_r [m]
+  double rollingInertia = 0.0;                                 // I_r about the rolling axis [kg m^2]
 };
+
+// The tangential part of v (its component along the unit normal removed).
+inline Eigen::Vector3d tangentialPart(const Eigen::Vector3d& v, const Eigen::Vector3d& normal) {
+  return v - v.dot(normal) * normal;
+}
+
+// A history vector of a contact point (a spring's displacement or torque) turned into the
+// current tangent plane: its normal component removed, its length kept (the contact plane of a
+// rolling or tilting pair turns from step to step).
+template <class Vector>
+void keepInTangentPlane(Vector&& history, const Eigen::Vector3d& normal) {
+  const double along = history.dot(normal);
+  if (along == 0.0) return;
+  const double length = history.norm();
+  history -= along * normal;
+  const double projected = history.norm();
+  history *= projected > 0.0 ? length / projected : 0.0;
+}
 
 // 1/m of `body` for a force at `point` along the unit `direction` (the sum's term above).
 double inverseMassAt(const dynamics::RigidBody& body, const Eigen::Vector3d& point,
                      const Eigen::Vector3d& direction);
+
+// u . I^-1 u of `body` for the unit world `axis` (0 for a fixed body or rotation off).
+double inverseInertiaAbout(const dynamics::RigidBody& body, const Eigen::Vector3d& axis);
 
 // The contact of two rigid bodies at `point` (velocities of their material points there).
 Contact makeContact(const dynamics::RigidBody& first, const dynamics::RigidBody& second,

@@ -10,6 +10,8 @@
 //   slidingDamping [N s/m]       viscous sliding coefficient gamma
 //   tangentialStiffness [N/m]    tangential spring k_t
 //   tangentialDamping [sqrt(kg)/s]  tangential dashpot D_t (force 2 D_t sqrt(m_t) v_t)
+//   rollingFriction [-]          rolling friction mu_r (rolling epsd: cap mu_r R_r F)
+//   rollingDamping [-]           damping ratio eta_r of the rolling dashpot
 //   cohesionEnergyDensity [J/m^3]   k_c of the sjkr-like cohesion
 //   characteristicRadius [m]     R* = r_i r_j / (r_i + r_j) of the volume-equivalent radii
 //   haloDepth [m]                eps

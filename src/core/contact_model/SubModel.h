@@ -71,9 +71,14 @@ class TangentialSubModel : public SubModel {
 class RollingSubModel : public SubModel {
  public:
   Slot slot() const override { return Slot::Rolling; }
-  // Torque on the first body (the second gets its opposite).
+  // Torque on the first body (the second gets its opposite) for a (repulsive) normal force
+  // normalForce >= 0; `history` and dt as for the tangential slot.
   virtual Eigen::Vector3d torqueOnFirst(const Contact& c, double normalForce, double* history,
                                         double dt) const = 0;
+  // Stiffness of the rolling spring at rolling radius R_r [N m/rad], 0 without one, and the
+  // damping ratio of its dashpot (time-step estimates).
+  virtual double stiffness(double /*rollingRadius*/) const { return 0.0; }
+  virtual double dampingRatio() const { return 0.0; }
 };
 
 class CohesionSubModel : public SubModel {

@@ -8,6 +8,7 @@
 #include "contact_model/CohesionSjkr.h"
 #include "contact_model/DampingApproach.h"
 #include "contact_model/NormalHaloSpring.h"
+#include "contact_model/RollingEpsd.h"
 #include "contact_model/TangentialHistory.h"
 #include "contact_model/TangentialViscous.h"
 
@@ -40,6 +41,8 @@ const std::vector<SubModelEntry>& subModelRegistry() {
       SUB_MODEL(Slot::Tangential, "viscous", TangentialViscous, "min(gamma |v_t|, mu F), no history"),
       SUB_MODEL(Slot::Tangential, "history", TangentialHistory,
                 "spring k_t xi + dashpot, capped at mu F (static friction)"),
+      SUB_MODEL(Slot::Rolling, "epsd", RollingEpsd,
+                "spring k_r + dashpot on the relative rolling, capped at mu_r R_r F"),
       SUB_MODEL(Slot::Cohesion, "sjkr", CohesionSjkr, "2 pi R* eps k_c while the halos overlap"),
   };
   return registry;

@@ -15,14 +15,7 @@ Eigen::Vector3d TangentialHistory::forceOnFirst(const Contact& c, double normalF
   const Eigen::Vector3d sliding = c.relativeVelocity - c.normalVelocity * c.normal;
   const double cap = friction_ * normalForce;
   if (dt > 0.0) {
-    // rotate into the current tangent plane, keeping the length
-    const double along = xi.dot(c.normal);
-    if (along != 0.0) {
-      const double length = xi.norm();
-      xi -= along * c.normal;
-      const double projected = xi.norm();
-      xi *= projected > 0.0 ? length / projected : 0.0;
-    }
+    keepInTangentPlane(xi, c.normal);
     xi += dt * sliding;
     const double spring = stiffness_ * xi.norm();
     if (spring > cap) xi *= cap / spring;  // sliding: the spring holds mu F

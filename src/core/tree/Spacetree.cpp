@@ -1,6 +1,7 @@
 #include "tree/Spacetree.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -29,15 +30,12 @@ double Spacetree::requiredMeshSize(double radius) const {
 }
 
 int Spacetree::hostLevel(double required) const {
-  // Finest level whose mesh is still big enough: drop as far as the particle fits.
-  const int finest = int(levels_.size()) - 1;
-  int l = finest;
-  if (required > 0.0) {
-    const double guess = std::floor(std::log(rootSize_ / required) / std::log(3.0));
-    l = int(std::clamp(guess, 0.0, double(finest)));
-  }
-  while (l > 0 && levels_[l].meshSize < required) --l;
-  while (l < finest && levels_[l + 1].meshSize >= required) ++l;
+  // Finest level whose mesh is still big enough: drop as far as the particle fits. Mesh sizes
+  // fall with the level, so that level is the count of levels below the root whose mesh fits
+  // (a branch-free count: continuous sizes would mispredict a search, and a logarithm per
+  // particle costs more).
+  int l = 0;
+  for (int k = 1; k < int(levels_.size()); ++k) l += meshSizes_[k] >= required ? 1 : 0;
   return l;
 }
 
@@ -71,7 +69,8 @@ void Spacetree::resetLevels(const std::array<double, 3>& origin, double rootSize
   levels_.resize(std::size_t(depth) + 1);
   stats_.levels.resize(levels_.size());
   for (int l = 0; l <= depth; ++l) {
-    levels_[l].meshSize = meshSizeOfLevel(rootSize, l);
+    levels_[l].meshSize = meshSizes_[l] = meshSizeOfLevel(rootSize, l);
+    inverseMeshSizes_[l] = 1.0 / meshSizes_[l];
     stats_.levels[l].meshSize = levels_[l].meshSize;
   }
 }
@@ -86,6 +85,8 @@ void Spacetree::clear(int n, int nActive) {
     level.rows.clear();
     level.slices.clear();
     level.crowds.clear();
+    level.radiusSum = level.radiusSquaredSum = 0.0;
+    level.occupancyBuilt = false;
   }
   stats_ = SpacetreeStatistics{};
   // Sized, not cleared: placeParticles writes every entry (clearing would zero-fill them all
@@ -138,12 +139,12 @@ void Spacetree::keyParticles(const double (*x)[3], const double* radius, int n, 
                              const SortKeyPacking& packing, std::vector<Record>& records) {
   const int levelCount = int(levels_.size());
   records.resize(std::size_t(n));
-  double lastRadius = -1.0;  // radii repeat (monodisperse species): skip the log
+  double lastRadius = -1.0;  // radii repeat (monodisperse species): skip the level search
   int lastLevel = 0;
   for (int i = 0; i < n; ++i) {
     // A caller's level may be coarser than the finest admissible one, never finer. Mesh sizes
     // fall with the level, so a level whose mesh still fits the particle is at or above the
-    // finest admissible one: taken as it is, without the level search (its logarithm).
+    // finest admissible one: taken as it is, without the level search.
     int l;
     const int wanted = hostLevelOf ? hostLevelOf[i] : -1;
     if (wanted >= 0 && wanted < levelCount && levels_[wanted].meshSize >= requiredMeshSize(radius[i])) {
@@ -156,7 +157,7 @@ void Spacetree::keyParticles(const double (*x)[3], const double* radius, int n, 
       l = hostLevelOf ? std::clamp(hostLevelOf[i], 0, lastLevel) : lastLevel;
     }
     particleLevel_[i] = std::int8_t(l);
-    const double inv = 1.0 / levels_[l].meshSize;
+    const double inv = inverseMeshSizes_[l];
     const std::int64_t vi = nearestVertexCoordinate(x[i][0], origin_[0], inv);
     const std::int64_t vj = nearestVertexCoordinate(x[i][1], origin_[1], inv);
     const std::int64_t vk = nearestVertexCoordinate(x[i][2], origin_[2], inv);
@@ -242,6 +243,10 @@ void Spacetree::placeSorted(const std::vector<Record>& sorted, const SortKeyPack
       level.keys.push_back(key & ((std::uint64_t(1) << kLevelShift) - 1));
     }
     level.slices.push_back(Slice{0, std::int32_t(level.rows.size())});  // past the end
+    for (int q = s; q < e; ++q) {
+      level.radiusSum += sr_[q];
+      level.radiusSquaredSum += sr_[q] * sr_[q];
+    }
     stats_.levels[l].realParticles = std::uint64_t(e - s);
     stats_.levels[l].vertices = level.vertices.size();
     stats_.deepestPopulatedLevel = l;
@@ -257,8 +262,55 @@ void Spacetree::countMemory() {
   for (const Level& level : levels_)
     bytes += level.vertices.capacity() * sizeof(Vertex) + level.keys.capacity() * sizeof(std::uint64_t) +
              level.rows.capacity() * sizeof(Row) + level.slices.capacity() * sizeof(Slice) +
-             level.crowds.capacity() * sizeof(Crowd);
+             level.crowds.capacity() * sizeof(Crowd) + level.occupancy.bytes();
   stats_.memoryBytes = bytes;
+}
+
+bool Spacetree::linkFromFineVertices(int m, int l, const VertexBitmap*& around) {
+  // Costs in about CPU cycles, measured on the power-law clouds of bench/neighbor_vs_lammps
+  // (the links themselves cost the same either way). A link ball pays a slice search per slice
+  // and a little per row it crosses: ball radius rho = r + 2 eps + h (1 + sqrt(3)) / 2 in fine
+  // mesh sizes, rows padded by one. A fine vertex pays one bit read; one with a coarse vertex
+  // around it (probability 1 - (1 - nu)^27, nu the coarse level's occupied fraction) its 3-bit
+  // reads, and each coarse vertex and particle found. The bitmap costs its words (dilation,
+  // rank) and a bit per coarse vertex, once per build.
+  constexpr double kSliceCost = 80.0, kRowCost = 30.0, kFineVertexCost = 25.0, kAroundCost = 60.0,
+                   kCoarseVertexCost = 30.0, kLinkTestCost = 15.0, kBitmapWordCost = 10.0, kBitmapVertexCost = 5.0,
+                   kSearchCost = 400.0;
+  // A bitmap holds at most this many bits of its cube per particle of the tree (3.5 bits each).
+  constexpr std::uint64_t kBitmapBitsPerParticle = 32;
+  around = nullptr;
+  Level& coarse = levels_[m];
+  const Level& fine = levels_[l];
+  const double coarseParticles = double(stats_.levels[m].realParticles);
+  const double coarseVertices = double(coarse.vertices.size());
+  const double fineVertices = double(fine.vertices.size());
+  // Few fine vertices (a level holding a handful of the smallest particles): a search each.
+  const bool fewFine = fineVertices < coarseParticles;
+  const std::int64_t last = kPowersOfThree[m];
+  const std::uint64_t bits = VertexBitmap::bitsFor(last);
+  if (bits > kBitmapBitsPerParticle * std::uint64_t(particleCount())) return fewFine;
+  const double h = fine.meshSize, a = 2.0 * options_.epsilon + kLinkMeshFactor * h + h;
+  const double sumRadius = coarse.radiusSum, sumSquares = coarse.radiusSquaredSum;
+  const double ballCost =
+      kSliceCost * ((2.0 * (sumRadius + coarseParticles * a)) / h + 3.0 * coarseParticles) +
+      kRowCost * 3.14159 * (sumSquares + 2.0 * a * sumRadius + coarseParticles * a * a) / (h * h);
+  const double cells = double(last + 1) * double(last + 1) * double(last + 1);
+  const double anyAround = 1.0 - std::pow(1.0 - coarseVertices / cells, 27.0);
+  const double fineCost =
+      fineVertices * (kFineVertexCost + anyAround * kAroundCost +
+                      27.0 / cells * (coarseVertices * kCoarseVertexCost + coarseParticles * kLinkTestCost)) +
+      (coarse.occupancyBuilt ? 0.0 : double(bits) / 64.0 * kBitmapWordCost + coarseVertices * kBitmapVertexCost);
+  if (fineCost < std::min(ballCost, fewFine ? fineVertices * kSearchCost : ballCost)) {
+    if (!coarse.occupancyBuilt) {
+      coarse.occupancy.build(coarse.keys.data(), coarse.keys.size(), last);
+      coarse.occupancyBuilt = true;
+      countMemory();
+    }
+    around = &coarse.occupancy;
+    return true;
+  }
+  return fewFine;
 }
 
 void Spacetree::sortByXThenId(std::vector<XAndId>& records) {

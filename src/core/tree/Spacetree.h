@@ -19,7 +19,11 @@
 // move forward), and the virtual links by each coarse particle visiting the finer vertices
 // inside its link ball, row by row (a binary search per row for the ball's k interval): the
 // cost of a big particle follows the vertices near its surface, not its volume, and vertices
-// far from every coarse particle cost nothing.
+// far from every coarse particle cost nothing. Where the coarse level is sparse and the finer
+// one holds many vertices (a dilute cloud of continuous sizes: thousands of balls each
+// crossing dozens of rows to find a vertex or two), each finer vertex instead reads the coarse
+// level's occupancy bitmap around its nearest coarse vertex (VertexBitmap: one bit read for
+// most), whichever a cost estimate finds cheaper (linkFromFineVertices); the links are the same.
 //
 // Crowded vertices (>= 8 particles: a lifted cloud on a coarse level of the reluctant grid)
 // keep their particles ordered by x with a bounding box, and are pruned instead of paired in
@@ -41,6 +45,7 @@
 #include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
 #include "tree/SpacetreeStatistics.h"
+#include "tree/VertexBitmap.h"
 #include "tree/VertexKey.h"
 
 namespace spacetree {
@@ -154,6 +159,9 @@ class Spacetree {
     std::vector<Row> rows;                // sorted by (i, j)
     std::vector<Slice> slices;            // sorted by i, and a last one past the end
     std::vector<Crowd> crowds;            // of the crowded vertices
+    double radiusSum = 0.0, radiusSquaredSum = 0.0;  // of its particles (link cost estimates)
+    VertexBitmap occupancy;               // built by the sweep when finer vertices look up this level
+    bool occupancyBuilt = false;          // in this build
   };
   static VertexIndex indexOf(const Level& level, std::size_t slot) { return unpackVertexKey(level.keys[slot]); }
   // Largest radius of [begin, bigBegin): stored for crowded vertices, computed otherwise.
@@ -267,19 +275,27 @@ class Spacetree {
   // holds crowded vertices (else their branches are compiled out).
   template <bool kCrowded, class PairFunction>
   void sweepLevel(int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons);
+  // Whether the virtual links of coarse level m on finer level l are found from the fine
+  // vertices (each looking up the 3x3x3 coarse vertices around it) rather than from the coarse
+  // particles (link balls), by the estimated cost of each; `around` is then the coarse level's
+  // bitmap when that is the cheaper look-up (built here), else nullptr.
+  bool linkFromFineVertices(int m, int l, const VertexBitmap*& around);
   // Virtual links of the particles of coarse level m on the vertices of finer level l, and
   // their pairs; returns the links. kCrowded: level l or m holds crowded vertices.
   template <bool kCrowded, class PairFunction>
   std::uint64_t linkLevels(int m, int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons,
                            std::uint64_t& tests);
-  // The vertices of `level` with index in [lo, hi] per axis, slice by slice and row by row:
-  // sliceRange(i, jLo, jHi) and rowRange(i, j, rowVertices, kLo, kHi) may narrow the j range
-  // of a slice or the k range of a row of rowVertices vertices (false: skip it); then f(slot)
-  // for each vertex. Only occupied slices
-  // and rows are visited.
-  template <class SliceRange, class RowRange, class F>
-  void forEachVertexIn(const Level& level, const std::int64_t lo[3], const std::int64_t hi[3],
-                       SliceRange&& sliceRange, RowRange&& rowRange, F&& f) const;
+  // The rows of `level` with (i, j) in [lo, hi], slice by slice: sliceRange(i, jLo, jHi) may
+  // narrow the j range of a slice (false: skip it); then onRow(i, row) for each occupied row.
+  template <class SliceRange, class OnRow>
+  void forEachRowIn(const Level& level, const std::int64_t lo[2], const std::int64_t hi[2], SliceRange&& sliceRange,
+                    OnRow&& onRow) const;
+  // f(slot) for the vertices of the row with k in [k0, k1], in order.
+  template <class F>
+  static void forEachVertexInRow(const Level& level, const Row& row, std::int64_t k0, std::int64_t k1, F&& f);
+  // f(slot) for the vertices of `level` with index in [lo, hi] per axis, in key order.
+  template <class F>
+  void forEachVertexIn(const Level& level, const std::int64_t lo[3], const std::int64_t hi[3], F&& f) const;
   // Pairs of two vertex-connected vertices of one level, at least one of them crowded: only
   // particles within reach of the other vertex's bounding box take part (a slab along the
   // shared face, edge or corner), then a sweep along x; without the slabs when the pair reach
@@ -296,7 +312,7 @@ class Spacetree {
   static constexpr double kPruneMargin = 1e-9;
   // (1 + sqrt(3)) / 2: a level's mesh sizes in the virtual-link radius (linkRadius).
   static constexpr double kLinkMeshFactor = 1.3660254037844386;
-  // Rows of at most this many vertices are scanned whole (up to the look-up's k range).
+  // Rows of at most this many vertices are tested whole, in one branch-free pass (a link ball).
   static constexpr std::int32_t kShortRow = 8;
   int hostLevel(double required) const;
   // Checks positions and radii; returns the bounding box and the radius range.
@@ -368,6 +384,8 @@ class Spacetree {
   double rootSize_ = 0.0;
   std::array<double, 3> origin_{0.0, 0.0, 0.0};
   std::vector<Level> levels_;
+  // Of levels_, contiguous (hostLevel, keyParticles).
+  double meshSizes_[kMaxSpacetreeLevel + 1] = {}, inverseMeshSizes_[kMaxSpacetreeLevel + 1] = {};
   int nActive_ = 0;
 
   // Particles sorted by (level, vertex key), structure of arrays for streaming access.

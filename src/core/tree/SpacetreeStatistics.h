@@ -13,6 +13,7 @@ struct LevelStatistics {
   std::uint64_t vertices = 0;       // vertices that host at least one real particle
   std::uint64_t virtualLinks = 0;   // (vertex, coarser particle) links made in the last sweep
   std::uint64_t linkTests = 0;      // (vertex, coarser particle) distances tested for them
+  std::uint64_t linkLookups = 0;    // (vertex, coarser level) look-ups of the coarse vertices around a vertex
 };
 
 struct SpacetreeStatistics {

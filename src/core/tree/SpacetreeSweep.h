@@ -18,7 +18,7 @@ template <class PairFunction>
 void Spacetree::sweep(PairFunction&& onPair, double pruneScale) {
   std::uint64_t candidatePairs = 0;
   const int nLevels = int(levels_.size());
-  for (auto& level : stats_.levels) level.virtualLinks = level.linkTests = 0;
+  for (auto& level : stats_.levels) level.virtualLinks = level.linkTests = level.linkLookups = 0;
   populated_.clear();
   for (int l = 0; l < nLevels; ++l)
     if (!levels_[l].vertices.empty()) populated_.push_back(l);
@@ -155,15 +155,14 @@ void Spacetree::sweepLevel(int l, PairFunction& onPair, double pruneScale, std::
   comparisons += candidatePairs;
 }
 
-template <class SliceRange, class RowRange, class F>
-void Spacetree::forEachVertexIn(const Level& level, const std::int64_t lo[3], const std::int64_t hi[3],
-                                SliceRange&& sliceRange, RowRange&& rowRange, F&& f) const {
+template <class SliceRange, class OnRow>
+void Spacetree::forEachRowIn(const Level& level, const std::int64_t lo[2], const std::int64_t hi[2],
+                             SliceRange&& sliceRange, OnRow&& onRow) const {
   if (level.rows.empty()) return;
   const Slice* lastSlice = level.slices.data() + level.slices.size() - 1;  // past the end
   const Slice* slice = branchlessPartitionPoint(level.slices.data(), lastSlice,
                                                 [&](const Slice& t) { return t.i < lo[0]; });
   const Row* rows = level.rows.data();
-  const std::uint64_t* keys = level.keys.data();
   for (; slice != lastSlice && slice->i <= hi[0]; ++slice) {
     std::int64_t j0 = lo[1], j1 = hi[1];
     if (!sliceRange(std::int64_t(slice->i), j0, j1)) continue;
@@ -173,23 +172,32 @@ void Spacetree::forEachVertexIn(const Level& level, const std::int64_t lo[3], co
       row = branchlessPartitionPoint(row, rowEnd, [&](const Row& r) { return r.j < j0; });
     else
       while (row != rowEnd && row->j < j0) ++row;
-    for (; row != rowEnd && row->j <= j1; ++row) {
-      std::int64_t k0 = lo[2], k1 = hi[2];
-      if (!rowRange(std::int64_t(slice->i), std::int64_t(row->j), row->end - row->begin, k0, k1)) continue;
-      if (k1 < 0) continue;  // vertex indices are >= 0
-      // The keys of one row differ only in k: compare them directly.
-      const std::uint64_t base = keys[row->begin] & ~kVertexKeyMask;
-      const std::uint64_t first = base + std::uint64_t(std::max<std::int64_t>(k0, 0) + kVertexKeyBias);
-      const std::uint64_t last = base + std::uint64_t(k1 + kVertexKeyBias);
-      std::int32_t w = row->begin;
-      if (row->end - w > 8)
-        w = std::int32_t(
-            branchlessPartitionPoint(keys + w, keys + row->end, [&](std::uint64_t key) { return key < first; }) - keys);
-      else
-        while (w < row->end && keys[w] < first) ++w;
-      for (; w < row->end && keys[w] <= last; ++w) f(w);
-    }
+    for (; row != rowEnd && row->j <= j1; ++row) onRow(std::int64_t(slice->i), *row);
   }
+}
+
+template <class F>
+void Spacetree::forEachVertexInRow(const Level& level, const Row& row, std::int64_t k0, std::int64_t k1, F&& f) {
+  if (k1 < 0) return;  // vertex indices are >= 0
+  // The keys of one row differ only in k: compare them directly.
+  const std::uint64_t* keys = level.keys.data();
+  const std::uint64_t base = keys[row.begin] & ~kVertexKeyMask;
+  const std::uint64_t first = base + std::uint64_t(std::max<std::int64_t>(k0, 0) + kVertexKeyBias);
+  const std::uint64_t last = base + std::uint64_t(k1 + kVertexKeyBias);
+  std::int32_t w = row.begin;
+  if (row.end - w > 8)
+    w = std::int32_t(branchlessPartitionPoint(keys + w, keys + row.end, [&](std::uint64_t key) { return key < first; }) -
+                     keys);
+  else
+    while (w < row.end && keys[w] < first) ++w;
+  for (; w < row.end && keys[w] <= last; ++w) f(w);
+}
+
+template <class F>
+void Spacetree::forEachVertexIn(const Level& level, const std::int64_t lo[3], const std::int64_t hi[3], F&& f) const {
+  forEachRowIn(
+      level, lo, hi, [](std::int64_t, std::int64_t&, std::int64_t&) { return true; },
+      [&](std::int64_t, const Row& row) { forEachVertexInRow(level, row, lo[2], hi[2], f); });
 }
 
 template <bool kCrowded, class PairFunction>
@@ -229,9 +237,12 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
   };
   // The fine vertices within r_q + linkReach of q's centre: rows whose (i, j) lie beyond it
   // are skipped with the partial sums linksTo computes (so no vertex it would accept); a long
-  // row narrows its k range from the remaining reach (padded by a vertex), a short one (a
-  // dilute level) is scanned over the ball's box; then the distance of linksTo decides, on
-  // the vertex coordinates the row and the key give (the vertex itself is read when linked).
+  // row narrows its k range from the remaining reach (padded by a vertex) and tests vertex by
+  // vertex; a short one (a dilute level: a ball crosses many rows of a few vertices, most of
+  // them outside its k range) tests all its vertices in one branch-free pass. The distance is
+  // that of linksTo, on the vertex coordinates the row and the key give (the vertex itself is
+  // read when linked).
+  const std::uint64_t* fineKeys = fine.keys.data();
   auto linkBall = [&](std::int32_t q, const std::int64_t near[2][3]) {
     const double reach = linkRadius(sr_[q], h), reach2 = reach * reach;
     const double c[3] = {sx_[q], sy_[q], sz_[q]};
@@ -240,8 +251,14 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
       lo[d] = std::max(near[0][d], indexBelow((c[d] - reach - origin_[d]) * inverse));
       hi[d] = std::min(near[1][d], indexAbove((c[d] + reach - origin_[d]) * inverse));
     }
-    double dx2 = 0.0, dxy2 = 0.0;  // of the current slice and row
-    forEachVertexIn(
+    double dx2 = 0.0;  // of the current slice
+    auto testVertex = [&](double dxy2, std::int32_t w) {
+      ++linkTests;
+      const double k = double(std::int64_t(fineKeys[w] & kVertexKeyMask) - kVertexKeyBias);
+      const double dz = c[2] - (origin_[2] + k * h);
+      if (dxy2 + dz * dz < reach2) linked(fine.vertices[std::size_t(w)], q);
+    };
+    forEachRowIn(
         fine, lo, hi,
         [&](std::int64_t i, std::int64_t& j0, std::int64_t& j1) {
           const double dx = c[0] - (origin_[0] + double(i) * h);
@@ -253,22 +270,31 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
           j1 = std::min(j1, indexAbove((c[1] + w - origin_[1]) * inverse));
           return j0 <= j1;
         },
-        [&](std::int64_t, std::int64_t j, std::int32_t rowVertices, std::int64_t& k0, std::int64_t& k1) {
-          const double dy = c[1] - (origin_[1] + double(j) * h);
-          dxy2 = dx2 + dy * dy;
+        [&](std::int64_t, const Row& row) {
+          const double dy = c[1] - (origin_[1] + double(row.j) * h);
+          const double dxy2 = dx2 + dy * dy;
           const double rest = reach2 - dxy2;
-          if (!(rest > 0.0)) return false;
-          if (rowVertices <= kShortRow) return true;
-          const double w = std::sqrt(rest);
-          k0 = std::max(k0, indexBelow((c[2] - w - origin_[2]) * inverse));
-          k1 = std::min(k1, indexAbove((c[2] + w - origin_[2]) * inverse));
-          return k0 <= k1;
-        },
-        [&](std::int32_t w) {
-          ++linkTests;
-          const double k = double(std::int64_t(fine.keys[std::size_t(w)] & kVertexKeyMask) - kVertexKeyBias);
-          const double dz = c[2] - (origin_[2] + k * h);
-          if (dxy2 + dz * dz < reach2) linked(fine.vertices[std::size_t(w)], q);
+          if (!(rest > 0.0)) return;
+          if (row.end - row.begin > kShortRow) {
+            const double w = std::sqrt(rest);
+            const std::int64_t k0 = std::max(lo[2], indexBelow((c[2] - w - origin_[2]) * inverse));
+            const std::int64_t k1 = std::min(hi[2], indexAbove((c[2] + w - origin_[2]) * inverse));
+            if (k0 <= k1) forEachVertexInRow(fine, row, k0, k1, [&](std::int32_t w) { testVertex(dxy2, w); });
+            return;
+          }
+          // Same vertices, tests and links as the k-range scan of a long row: those with k in
+          // [lo, hi] are tested, those within reach linked, in k order.
+          std::int32_t hits[kShortRow], count = 0, inRange = 0;
+          for (std::int32_t w = row.begin; w < row.end; ++w) {
+            const std::int64_t k = std::int64_t(fineKeys[w] & kVertexKeyMask) - kVertexKeyBias;
+            const double dz = c[2] - (origin_[2] + double(k) * h);
+            const bool within = (k >= lo[2]) & (k <= hi[2]);
+            inRange += within ? 1 : 0;
+            hits[count] = w;
+            count += (within & (dxy2 + dz * dz < reach2)) ? 1 : 0;
+          }
+          linkTests += std::uint64_t(inRange);
+          for (std::int32_t t = 0; t < count; ++t) linked(fine.vertices[std::size_t(hits[t])], q);
         });
   };
 
@@ -287,23 +313,29 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
       for (std::int32_t t = 0; t < count; ++t) linked(v, linkHits_[std::size_t(t)]);
     }
   };
-  auto all2 = [](std::int64_t, std::int64_t&, std::int64_t&) { return true; };
-  auto all3 = [](std::int64_t, std::int64_t, std::int32_t, std::int64_t&, std::int64_t&) { return true; };
 
-  if (fine.vertices.size() < stats_.levels[m].realParticles) {
-    // Few fine vertices (a level holding a handful of the smallest particles): each one looks
-    // for the coarse vertices around its nearest coarse vertex instead.
+  const VertexBitmap* around = nullptr;
+  if (linkFromFineVertices(m, l, around)) {
+    stats_.levels[l].linkLookups += fine.vertices.size();
+    // Each fine vertex looks for the coarse vertices around its nearest coarse vertex: with
+    // the coarse level's bitmap nine 3-bit reads, else a search over its slices and rows.
+    // Nearest coarse index (n + half) / s as a multiply-high: exact for n s < 2^64 (indices
+    // below 2^21, s = 3^(l - m) <= 3^19).
+    const std::uint64_t reciprocal = ~std::uint64_t(0) / std::uint64_t(s) + 1;
+    auto nearestCoarse = [&](std::int32_t n) {
+      return std::int64_t((static_cast<unsigned __int128>(std::uint64_t(n + half)) * reciprocal) >> 64);
+    };
     for (std::size_t w = 0; w < fine.vertices.size(); ++w) {
-      const Vertex& v = fine.vertices[w];
       const VertexIndex vi = indexOf(fine, w);
-      const double vx = origin_[0] + vi.i * h, vy = origin_[1] + vi.j * h, vz = origin_[2] + vi.k * h;
-      const std::int64_t vc[3] = {vi.i, vi.j, vi.k};
-      std::int64_t lo[3], hi[3];
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = (vc[d] + half) / s - 1;
-        hi[d] = lo[d] + 2;
+      const std::int64_t cc[3] = {nearestCoarse(vi.i), nearestCoarse(vi.j), nearestCoarse(vi.k)};
+      std::uint32_t occupied = 0;
+      if (around) {
+        if (!around->anyAround(cc[0], cc[1], cc[2])) continue;
+        occupied = around->around(cc[0], cc[1], cc[2]);
       }
-      forEachVertexIn(coarse, lo, hi, all2, all3, [&](std::int32_t cu) {
+      const Vertex& v = fine.vertices[w];
+      const double vx = origin_[0] + vi.i * h, vy = origin_[1] + vi.j * h, vz = origin_[2] + vi.k * h;
+      auto linkCoarseVertex = [&](std::int32_t cu) {
         const Vertex& u = coarse.vertices[std::size_t(cu)];
         std::int32_t q = u.begin;
         if (kCrowded && u.sortedByX()) {
@@ -313,7 +345,17 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
         linkTests += std::uint64_t(u.end - q);
         for (; q < u.end; ++q)
           if (linksTo(q, vx, vy, vz, linkReach)) linked(v, q);
-      });
+      };
+      if (around) {
+        while (occupied) {
+          const unsigned t = unsigned(__builtin_ctz(occupied));
+          occupied &= occupied - 1;
+          linkCoarseVertex(around->slotAround(cc[0], cc[1], cc[2], t));
+        }
+      } else {
+        const std::int64_t lo[3] = {cc[0] - 1, cc[1] - 1, cc[2] - 1}, hi[3] = {cc[0] + 1, cc[1] + 1, cc[2] + 1};
+        forEachVertexIn(coarse, lo, hi, linkCoarseVertex);
+      }
     }
   } else {
     for (std::size_t cu = 0; cu < coarse.vertices.size(); ++cu) {
@@ -337,7 +379,7 @@ std::uint64_t Spacetree::linkLevels(int m, int l, PairFunction& onPair, double p
           lo[d] = std::max(near[0][d], indexBelow((box.lo[d] - reach - origin_[d]) * inverse));
           hi[d] = std::min(near[1][d], indexAbove((box.hi[d] + reach - origin_[d]) * inverse));
         }
-        forEachVertexIn(fine, lo, hi, all2, all3, [&](std::int32_t w) {
+        forEachVertexIn(fine, lo, hi, [&](std::int32_t w) {
           const VertexIndex vi = indexOf(fine, std::size_t(w));
           linkCrowded(u, fine.vertices[std::size_t(w)], origin_[0] + vi.i * h, origin_[1] + vi.j * h, origin_[2] + vi.k * h);
         });

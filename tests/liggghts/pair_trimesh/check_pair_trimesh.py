@@ -18,10 +18,11 @@ Tests (`:2` = on 2 ranks, the bodies on both sides of the rank boundary):
                    force: they come off at 2 pi R* eps k_c within 2 %
   history_ranks    a pile of 32 dented grains with tangential history on 1, 2 and 4 ranks: same
                    positions (1e-12 m) and history (number of points; sum of |xi| to 1e-9)
-  history_restart[:2]  the pile written to a restart file half way and continued = the same run
-                   split in one process (both set up at the half-way step), bit for bit: dumps
-                   and the history's thermo columns
-  rollback[:2]     two cubes meeting corner to corner with a sideways speed, fix adapt/timestep
+  history_restart[:2]  the pile (with rolling_friction epsd) written to a restart file half way
+                   and continued = the same run split in one process (both set up at the
+                   half-way step), bit for bit: dumps and the history's thermo columns
+  rollback[:2]     two cubes meeting corner to corner with a sideways speed (tangential history,
+                   rolling_friction epsd), fix adapt/timestep
                    rollback yes: the step entering the halo too deep is redone with half the step;
                    the redone step's spring (and positions, velocities) = those of a replay of the
                    same step sizes without rollback, bit for bit (the rejected attempt's spring
@@ -29,7 +30,8 @@ Tests (`:2` = on 2 ranks, the bodies on both sides of the rank boundary):
   shuffle          the incline (hold and slide) with the cube's triangles in another order: the
                    same trajectory and history to 1e-12
   bad              unknown sub-model or keyword, a missing material for a type pair, negative
-                   or NaN coefficients, history with newton on: each a clear ERROR
+                   or NaN coefficients, history with newton on, rolling friction missing,
+                   negative, with rotation no or newton on: each a clear ERROR
 """
 import math
 import os
@@ -280,9 +282,10 @@ def case_history_ranks(R):
 def case_history_restart(R, np):
     pile_floor(R.work)
     n = 1200
-    split = pile(R, "split", np, n, 2 * n, after="run %d" % n)
-    pile(R, "first", np, n, 2 * n, after="write_restart half.restart")
-    cont = pile(R, "restarted", np, n, 2 * n, deck="in.pile_restart", file="half.restart")
+    # with rolling resistance: its torques ride in the same records (hsum adds them up)
+    split = pile(R, "split", np, n, 2 * n, after="run %d" % n, rolling="epsd")
+    pile(R, "first", np, n, 2 * n, after="write_restart half.restart", rolling="epsd")
+    cont = pile(R, "restarted", np, n, 2 * n, deck="in.pile_restart", file="half.restart", rolling="epsd")
     a = open(os.path.join(R.work, "split_%d.dump" % (2 * n))).read()
     b = open(os.path.join(R.work, "restarted_%d.dump" % (2 * n))).read()
     check(a == b, "history_restart: restarted run = the split run, dump at step %d byte for byte" % (2 * n))
@@ -321,7 +324,9 @@ def case_rollback(R, np):
                 "thermo_style custom step time dt v_ncont v_hn v_hsum v_x1 v_x2 v_y2 v_vy1 v_vy2 f_dtv[5]\n"
                 "thermo_modify format float %%.17g\nrun %d\n" % n)
     procs = "2 1 1" if np == 2 else "1 1 1"
-    _, text = R.run("in.rollback", "adaptive", np, dict(vt=vt, dt=dt, steps="adaptive.in", procs=procs))
+    # with rolling resistance: its torque is restored with the tangential spring
+    _, text = R.run("in.rollback", "adaptive", np, dict(vt=vt, dt=dt, steps="adaptive.in", procs=procs,
+                                                        rolling="epsd"))
     a = rollback_rows(text)
     redone = [k for k in range(1, n + 1) if float(a[k]["dtv[5]"]) > float(a[k - 1]["dtv[5]"])]
     check(len(redone) == 1 and a[redone[0]]["hn"] == "1",
@@ -335,7 +340,8 @@ def case_rollback(R, np):
         f.write("thermo_modify format float %.17g\n")
         for size in sizes:
             f.write("timestep %r\nrun 1\n" % size)
-    _, text = R.run("in.rollback", "replay", 1, dict(vt=vt, dt=dt, steps="replay.in", procs="1 1 1"))
+    _, text = R.run("in.rollback", "replay", 1, dict(vt=vt, dt=dt, steps="replay.in", procs="1 1 1",
+                                                     rolling="epsd"))
     b = rollback_rows(text)
     same = [c for c in ROLLBACK_COLS if a[k0][c] == b[k0][c]]
     check(len(same) == len(ROLLBACK_COLS), "rollback: the redone step %d = the replay with dt %r without "
@@ -418,6 +424,22 @@ BAD = {
                            r"GAMMA is the sliding damping of tangential viscous"),
     "kt_without_history": ("pair_style trimesh eps 1e-4 stiffness 1e5 damping 1 tangential_stiffness 1e5\n",
                            r"tangential_stiffness needs tangential history"),
+    "unknown_rolling": ("pair_style trimesh eps 1e-4 rolling_friction cdt\n",
+                        r"unknown rolling sub-model 'cdt' \(one of: none, epsd\)"),
+    "missing_rolling_friction": (MATERIALS.format(nu=0.3, e=0.5) +
+                                 "pair_style trimesh eps 1e-4 tangential history rolling_friction epsd\n" + RUN,
+                                 r"rolling_friction epsd needs fix property/global coefficientRollingFriction "
+                                 r"peratomtypepair"),
+    "negative_rolling_friction": (MATERIALS.format(nu=0.3, e=0.5) +
+                                  "fix m5 all property/global coefficientRollingFriction peratomtypepair 2 "
+                                  "0.2 -0.1 -0.1 0.2\n"
+                                  "pair_style trimesh eps 1e-4 tangential history rolling_friction epsd\n" + RUN,
+                                  r"coefficientRollingFriction = -0.1 for type pair 1 2 must be >= 0"),
+    "rolling_rotation_no": ("pair_style trimesh eps 1e-4 stiffness 1e5 damping 1 rolling_friction epsd rotation no\n",
+                            r"rolling_friction needs rotation yes"),
+    "rolling_newton_on": ("fix m5 all property/global coefficientRollingFriction peratomtypepair 2 0.2 0.2 0.2 0.2\n"
+                          "pair_style trimesh eps 1e-4 stiffness 1e5 damping 1 rolling_friction epsd\n" + RUN,
+                          r"requires newton off.*rolling_friction epsd"),
     "history_newton_on": ("pair_style trimesh eps 1e-4 stiffness 1e5 damping 1 tangential history friction 0.5\n" + RUN,
                           r"requires newton off.*tangential history"),
 }
@@ -429,7 +451,7 @@ def case_bad(R):
     for name, (body, pattern) in sorted(BAD.items()):
         deck = os.path.join(R.work, "bad_%s.in" % name)
         with open(deck, "w") as f:
-            f.write(BAD_PRELUDE.format(newton="on" if name == "history_newton_on" else "off") + body)
+            f.write(BAD_PRELUDE.format(newton="on" if name.endswith("newton_on") else "off") + body)
         rc, text = R.run(deck, "bad_" + name, 1, {}, expect_ok=False)
         err = [l for l in text.splitlines() if "ERROR" in l]
         check(rc != 0 and any(re.search(pattern, l) for l in err),
