@@ -232,7 +232,7 @@ void Spacetree::placeSorted(const std::vector<Record>& sorted, const SortKeyPack
       v.active = active;
       v.bigBegin = e;
       v.box = -1;
-      if (v.end - v.begin >= kSweepAndPruneMinParticles) {
+      if (v.end - v.begin >= kSweepAndPruneMinParticles && worthPruning(v.begin, v.end, level.meshSize)) {
         v.bigBegin = orderCrowdedVertex(v.begin, v.end, x, radius);
         Crowd crowd{boxOf(v.begin, v.bigBegin), 0.0};
         for (std::int32_t q = v.begin; q < v.bigBegin; ++q) crowd.maxSmallRadius = std::max(crowd.maxSmallRadius, sr_[q]);
