@@ -3,7 +3,8 @@
 angle?
 
 Decks inputs/heap/in.heap_grains (pair_style trimesh, 40-triangle dented grains, rotation yes,
-tangential history, materials E 1e5 Pa, nu 0.3, e 0.3, mu 0.5; halo 0.1 mm) and
+tangential history, rolling_friction epsd with coefficientRollingFriction 0.1, materials E 1e5
+Pa, nu 0.3, e 0.3, mu 0.5; halo 0.1 mm) and
 inputs/heap/in.heap_spheres (pair gran hertz with tangential history, the same materials, spheres
 of the grains' volume-equivalent radius, no rolling friction): a side x side x side block
 (spacing 6.4 mm; 10 = 1000 grains by default) released just above a 0.4 m square floor
@@ -11,9 +12,10 @@ collapses into a heap; each deck runs in chunks of `--chunk` steps of `--dt` unt
 energy has stayed below 1e-9 of the largest one at a chunk end at `--held` consecutive chunk ends
 (or `--chunks` chunks).
 
-As context only, `spheres_rolling`: the same spheres with LIGGGHTS' rolling friction
-(`rolling_friction cdt`, coefficientRollingFriction 0.1), the usual stand-in for the shape's
-resistance to rolling.
+`spheres_rolling`: the same spheres with LIGGGHTS' rolling friction of the same model and
+coefficient as the grains (`rolling_friction epsd`, coefficientRollingFriction 0.1,
+coefficientRollingViscousDamping 0.36, the grains' default ratio at e 0.3): what the shape
+adds to the same rolling resistance.
 
 Measured per run: grains left (none may be lost for the grains; spheres that roll off the floor
 leave the box), simulated time, kinetic energy at the end / its largest value over the whole
@@ -55,7 +57,7 @@ OUT = os.path.join(HERE, "results", "heap_repose")
 DENSITY = 2500.0
 # kind: (deck, extra variables)
 KINDS = {"grains": ("in.heap_grains", {}), "spheres": ("in.heap_spheres", {}),
-         "spheres_rolling": ("in.heap_spheres", {"rolling": "cdt", "murolling": 0.1})}
+         "spheres_rolling": ("in.heap_spheres", {"rolling": "epsd", "murolling": 0.1})}
 
 
 def floor_triangles():

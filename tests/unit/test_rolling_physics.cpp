@@ -88,7 +88,7 @@ TEST(RollingEpsd, SpringGrowsWithTheRollingAngleUpToTheCapAndOpposesIt) {
   EXPECT_EQ(history[2], 0.0);
   // below the cap the dashpot 2 eta_r sqrt(I_r k_r) w_r adds to the spring
   EXPECT_NEAR(tau.x(), -(kr * 10 * dt + 2 * kEtaR * std::sqrt(c.rollingInertia * kr)) * 1e-3, 1e-12);
-  // on until the cap mu_r R_r F: the spring stays there and the dashpot is off
+  // on until the cap mu_r R_r F: the spring stays there, spring plus dashpot capped to it
   const double cap = kMuR * R * F;
   for (int s = 0; s < 2000; ++s) tau = law.torqueOnFirst(c, F, history, 1e-3);
   EXPECT_NEAR(Vector3d(history[0], history[1], history[2]).norm(), cap, 1e-12 * cap);
@@ -100,6 +100,18 @@ TEST(RollingEpsd, SpringGrowsWithTheRollingAngleUpToTheCapAndOpposesIt) {
   EXPECT_EQ(history[0], before);
   // a smaller normal force lowers the cap at once
   EXPECT_NEAR(law.torqueOnFirst(c, 0.5 * F, history, dt).norm(), 0.5 * cap, 1e-12 * cap);
+}
+
+TEST(RollingEpsd, TorqueIsContinuousAtTheCap) {
+  // a spring at the cap within round-off, the contact turning back (unloading): the dashpot acts
+  // on either side of the cap, so round-off in |M_r| cannot switch the torque
+  const RollingEpsd law(coefficients());
+  const double F = 50.0, cap = kMuR * 0.1 * F;
+  const Contact c = pointContact(Vector3d(-1e-3, 0.0, 0.0));
+  double below[3] = {cap * (1 - 1e-15), 0, 0}, above[3] = {cap * (1 + 1e-15), 0, 0};
+  const Vector3d a = law.torqueOnFirst(c, F, below, 0.0), b = law.torqueOnFirst(c, F, above, 0.0);
+  EXPECT_LT(a.x(), cap * (1 - 1e-6));  // the dashpot unloads it
+  EXPECT_NEAR(a.x(), b.x(), 1e-12 * cap);
 }
 
 TEST(RollingEpsd, HistoryTurnsWithTheContactPlaneKeepingItsLength) {

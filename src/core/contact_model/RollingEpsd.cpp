@@ -21,8 +21,9 @@ Eigen::Vector3d RollingEpsd::torqueOnFirst(const Contact& c, double normalForce,
     const double length = spring.norm();
     if (length > cap) spring *= cap / length;  // full mobilisation: the spring holds mu_r R_r F
   }
-  Eigen::Vector3d torque = spring;
-  if (spring.norm() < cap) torque += (2.0 * damping_ * std::sqrt(c.rollingInertia * kr)) * rolling;
+  // spring plus dashpot, capped as a whole: continuous at the cap (a dashpot switched off there
+  // by comparing |M_r| with the cap would switch on round-off)
+  Eigen::Vector3d torque = spring + (2.0 * damping_ * std::sqrt(c.rollingInertia * kr)) * rolling;
   const double magnitude = torque.norm();
   if (magnitude > cap) torque *= cap / magnitude;
   return torque;

@@ -7,10 +7,12 @@
 //   M_r += k_r w_r dt,   w_r = the tangential part of omega_j - omega_i (relative rolling),
 // and cut back to |M_r| = mu_r R_r F when longer (full mobilisation: the contact rolls on with
 // that constant torque). The torque on the first body (the second gets its opposite) is
-//   tau = M_r + C_r w_r  below the cap,   tau = M_r  at the cap (no dashpot, as LIGGGHTS),
-// scaled down to mu_r R_r F if longer, so |tau| <= mu_r R_r F always: a body rolling at the cap
-// is decelerated by the constant torque mu_r R_r F, and below it a torque M is held by the
-// rotation M / k_r. dt = 0 evaluates the stored M_r without changing it.
+//   tau = M_r + C_r w_r,  scaled down to mu_r R_r F if longer,
+// so |tau| <= mu_r R_r F always: a body rolling at the cap is decelerated by the constant torque
+// mu_r R_r F, and below it a torque M is held by the rotation M / k_r. (LIGGGHTS switches the
+// dashpot off at the cap; capping the sum instead keeps the torque continuous there, as the
+// tangential history model's force, so that round-off cannot switch it.) dt = 0 evaluates the
+// stored M_r without changing it.
 // Coefficients (per type pair, ContactParameters): rollingFriction mu_r [-] >= 0 (LIGGGHTS
 // coefficientRollingFriction), rollingDamping eta_r [-] >= 0, the dashpot's damping ratio
 // (LIGGGHTS coefficientRollingViscousDamping), stiffness S [N/m] of the normal halo spring.

@@ -16,7 +16,8 @@ Tests (`:2` = on 2 ranks, the bodies on both sides of the rank boundary):
                    restitution = its coefficientRestitution within 2 %
   cohesion[:2]     two cubes held corner to corner by `cohesion sjkr`, pulled apart by a growing
                    force: they come off at 2 pi R* eps k_c within 2 %
-  history_ranks    a pile of 32 dented grains with tangential history on 1, 2 and 4 ranks: same
+  history_ranks    a pile of 32 dented grains with tangential history and rolling_friction epsd
+                   on 1, 2 and 4 ranks: same
                    positions (1e-12 m) and history (number of points; sum of |xi| to 1e-9)
   history_restart[:2]  the pile (with rolling_friction epsd) written to a restart file half way
                    and continued = the same run split in one process (both set up at the
@@ -263,7 +264,8 @@ def dump(wd, name):
 def case_history_ranks(R):
     pile_floor(R.work)
     n = 2400
-    runs = {np: pile(R, "np%d" % np, np, n, n) for np in (1, 2, 4)}
+    # with rolling resistance: its torques ride in the same records (hsum adds them up)
+    runs = {np: pile(R, "np%d" % np, np, n, n, rolling="epsd") for np in (1, 2, 4)}
     ref = dump(R.work, "np1_%d.dump" % n)
     h = runs[1]["hn"][-1]
     # not a vacuous comparison: the grains still bounce at step n (4 points with history there)
