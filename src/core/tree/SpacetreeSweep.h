@@ -1,8 +1,8 @@
 // The traversal of a built Spacetree (its member templates, included by Spacetree.h): per
 // populated level the pairs within and between forward-neighbour vertices (sorted-key walk),
-// then the virtual links of every coarser level's particles on its vertices (link balls, or
-// for a level of few vertices their coarse neighbourhoods), and the pruned pairs of crowded
-// vertices.
+// then the virtual links of every coarser level's particles on its vertices (link balls, or,
+// where that is estimated cheaper, each finer vertex looking up its coarse neighbourhood, in the
+// coarse level's occupancy bitmap when it has one), and the pruned pairs of crowded vertices.
 #pragma once
 
 #include <algorithm>
