@@ -168,10 +168,10 @@ void Neighbor::spacetree_free()
 namespace {
 
 // 2. The largest neighbour count of an owned atom (the judge counted them).
-int largest_count(const NeighSpacetree &st, int nlocal)
+int largest_count(const int *numneigh, int nlocal)
 {
   int maxcount = 0;
-  for (int i = 0; i < nlocal; i++) maxcount = std::max(maxcount,st.count[i]);
+  for (int i = 0; i < nlocal; i++) maxcount = std::max(maxcount,numneigh[i]);
   return maxcount;
 }
 
@@ -255,7 +255,7 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   MyPage<int> *ipage = list->ipage;
-  const int *count = st.count.data();
+  const int *count = numneigh;  // the judge's counts
 
   FixContactHistory *fix_history = list->fix_history;
   NeighList *listgranhistory = fix_history ? list->listgranhistory : NULL;
@@ -287,8 +287,7 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
     int *neighptr = ipage->get(n);
     if (!neighptr) error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
     ilist[i] = i;
-    firstneigh[i] = neighptr;
-    numneigh[i] = 0;  // the fill cursor below
+    firstneigh[i] = neighptr + n;  // the fill cursor below: moves back to the chunk's start
     if (fix_history) {
       int *contact_flag_ptr = ipage_contact_flag->get(n);
       double *contact_hist_ptr = dpage_contact_hist->get(dnum*n);
@@ -302,10 +301,7 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
 
   const spacetree::NeighbourSearch::ListedPairs &pairs = st.pairs;
   const int *pi = pairs.first.data(), *pj = pairs.second.data();
-  for (size_t p = 0; p < pairs.size(); p++) {
-    const int i = pi[p];
-    firstneigh[i][numneigh[i]++] = pj[p];
-  }
+  for (size_t p = 0; p < pairs.size(); p++) *--firstneigh[pi[p]] = pj[p];
 
   if (fix_history) {
     for_each_run(first_contact_flag,nlocal,[&](int i) { return count[i]; },
@@ -370,8 +366,9 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   const bool exact_cut = (cdf == 1.0 && 2.0*st.search.epsilon() == skin);
   const int exclude_ = exclude;
   using Verdict = spacetree::NeighbourSearch::Verdict;
-  st.count.assign(nlocal,0);
-  int *count = st.count.data();
+  // the count of each owned atom's pairs goes straight into the list's numneigh
+  int *count = list->numneigh;
+  std::fill(count,count+nlocal,0);
   auto judge = [&](int i, int j, double rsq, double contact_radsum) {
     // own/own pairs once under the lower index, own/ghost pairs under the owned atom; with
     // contact_distance_factor 1 the tree's radius sum is radius[i] + radius[j]
@@ -401,7 +398,7 @@ void Neighbor::granular_spacetree_no_newton(NeighList *list)
   }
 
   // 2.-4.
-  const int maxcount = largest_count(st,nlocal);
+  const int maxcount = largest_count(list->numneigh,nlocal);
   const int one = size_pages(list,maxcount,comm->nthreads);
   if (one) {
     oneatom = std::max(oneatom,one);  // contact history follows at its next exchange

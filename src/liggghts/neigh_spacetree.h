@@ -23,7 +23,6 @@ class NeighSpacetree {
   // Scratch of the list build, kept between builds to avoid reallocation.
   std::vector<double> contact_radius;   // radius * contact_distance_factor
   spacetree::NeighbourSearch::ListedPairs pairs;  // second marked (~j): touching
-  std::vector<int> count;               // listed pairs per owned atom (owned by its lower index)
 
   // Mesh size of the finest cell that hosts a particle at the last build (0 before any); with
   // fix spacetree the tree is built on that grid's hosts, so it is the grid's finest such cell.

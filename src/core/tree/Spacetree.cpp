@@ -204,27 +204,35 @@ void Spacetree::placeSorted(const std::vector<Record>& sorted, const SortKeyPack
   for (int s = 0; s < n;) {
     const int l = packing.levelOf(sorted[std::size_t(s)].key);
     Level& level = levels_[l];
+    // The level's particles (sorted by level first); they fill at most as many vertices. The
+    // storage is kept from build to build: the vertices are counted (for an exact reserve)
+    // only when it might be too small.
+    const int levelEnd = int(std::partition_point(sorted.begin() + s, sorted.begin() + n,
+                                                  [&](const Record& r) { return packing.levelOf(r.key) == l; }) -
+                             sorted.begin());
+    if (level.vertices.capacity() < std::size_t(levelEnd - s)) {
+      std::size_t vertexCount = 0;
+      for (int e = s; e < levelEnd; ++e)
+        vertexCount += (e == s || sorted[std::size_t(e)].key != sorted[std::size_t(e - 1)].key) ? 1 : 0;
+      level.vertices.reserve(vertexCount);
+      level.keys.reserve(vertexCount);
+    }
     int e = s;
-    std::size_t vertexCount = 0;
-    for (; e < n && packing.levelOf(sorted[std::size_t(e)].key) == l; ++e)
-      vertexCount += (e == s || sorted[std::size_t(e)].key != sorted[std::size_t(e - 1)].key) ? 1 : 0;
-    level.vertices.reserve(vertexCount);
-    level.keys.reserve(vertexCount);
-    for (e = s; e < n && packing.levelOf(sorted[std::size_t(e)].key) == l;) {
+    while (e < levelEnd) {
       const auto sortKey = sorted[std::size_t(e)].key;
       const std::uint64_t key = packing.fromSortKey(sortKey);
       // Filled in place (a record built on the stack and copied in reads back fields just
       // written piecewise: a stalled store-to-load forward per vertex).
       const std::int32_t slot = std::int32_t(level.vertices.size()), begin = e;
       std::int32_t active = 0;
-      for (; e < n && sorted[std::size_t(e)].key == sortKey; ++e) active += sorted[std::size_t(e)].index < nActive_ ? 1 : 0;
+      for (; e < levelEnd && sorted[std::size_t(e)].key == sortKey; ++e) active += sorted[std::size_t(e)].index < nActive_ ? 1 : 0;
       Vertex& v = level.vertices.emplace_back();
       v.begin = begin;
       v.end = e;
       v.active = active;
       v.bigBegin = e;
       v.box = -1;
-      if (v.end - v.begin >= kSweepAndPruneMinParticles) {
+      if (v.end - v.begin >= kSweepAndPruneMinParticles && worthPruning(v.begin, v.end, level.meshSize)) {
         v.bigBegin = orderCrowdedVertex(v.begin, v.end, x, radius);
         Crowd crowd{boxOf(v.begin, v.bigBegin), 0.0};
         for (std::int32_t q = v.begin; q < v.bigBegin; ++q) crowd.maxSmallRadius = std::max(crowd.maxSmallRadius, sr_[q]);

@@ -144,6 +144,18 @@ class Spacetree {
   // Regular levels rarely reach it; coarse levels holding a lifted cloud (reluctant grid) do.
   static constexpr std::int32_t kSweepAndPruneMinParticles = 8;
   static constexpr double kBigRadiusOverMedian = 4.0;
+  // Whether sweep and prune pays on a vertex of mesh size h holding the particles [begin, end):
+  // when even its smallest pair reach 2 r_min + 2 eps is a quarter of the cell or more (a dense
+  // pack at its finest level, several particles per cell) an x window keeps most of a
+  // neighbour's particles, and the branch-free block test of the plain path is cheaper, up to
+  // kDenseCrowdMinParticles (beyond that the plain path's pairs grow too fast).
+  bool worthPruning(std::int32_t begin, std::int32_t end, double h) const {
+    if (end - begin >= kDenseCrowdMinParticles) return true;
+    double smallest = sr_[begin];
+    for (std::int32_t q = begin + 1; q < end; ++q) smallest = std::min(smallest, sr_[q]);
+    return 4.0 * (2.0 * smallest + 2.0 * options_.epsilon) < h;
+  }
+  static constexpr std::int32_t kDenseCrowdMinParticles = 24;
   // The vertices of one level sharing (i, j): [begin, end) in Level::vertices, ordered by k;
   // the rows sharing i form a slice, [firstRow, next slice's firstRow) in Level::rows.
   struct Row {
