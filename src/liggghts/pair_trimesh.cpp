@@ -616,7 +616,8 @@ void PairTrimesh::add_pair_forces(int a, const dy::RigidBody &ba, int b, const d
     if (wall) wall_body = trimesh_wall_body(c.point,wall[kc].wall_velocity);
     stat_max_penetration = std::max(stat_max_penetration,c.penetration);
     // a merged point stands for c.weight contact points (ContactMerger)
-    const cm::Contact k = cm::makeContact(ba,wall ? wall_body : bb,c.point,c.normal,c.weight * c.penetration);
+    const cm::Contact k = cm::makeContact(ba,wall ? wall_body : bb,c.point,c.normal,c.weight * c.penetration,
+                                          law.rolling() != NULL);
     // on the first body; the second gets -fa (and -ta)
     const cm::ContactForces out = law.evaluate(k,slots ? slots + kc*stride : NULL,dt);
     const Eigen::Vector3d &fa = out.forceOnFirst;

@@ -83,7 +83,8 @@ class RigidContactDriver {
         for (std::size_t k = 0; k < contacts_.size(); ++k) {
           const ContactPoint& c = contacts_[k];
           const contact_model::Contact con =
-              contact_model::makeContact(a, b, c.point, c.normal, c.weight * c.penetration);
+              contact_model::makeContact(a, b, c.point, c.normal, c.weight * c.penetration,
+                                         model_.rolling() != nullptr);
           const contact_model::ContactForces out =
               model_.evaluate(con, slots ? slots + k * std::size_t(stride) : nullptr, dt);
           dynamics::applyContactForce(a, b, c.point, out.forceOnFirst, loads[i], loads[j]);

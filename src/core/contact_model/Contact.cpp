@@ -16,7 +16,8 @@ double inverseInertiaAbout(const dynamics::RigidBody& body, const Eigen::Vector3
 }
 
 Contact makeContact(const dynamics::RigidBody& first, const dynamics::RigidBody& second,
-                    const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double penetration) {
+                    const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double penetration,
+                    bool rolling) {
   Contact c;
   c.point = point;
   c.normal = normal;
@@ -33,15 +34,16 @@ Contact makeContact(const dynamics::RigidBody& first, const dynamics::RigidBody&
     const double inverseTangential = inverseMassAt(first, point, t) + inverseMassAt(second, point, t);
     c.tangentialMass = inverseTangential > 0.0 ? 1.0 / inverseTangential : 0.0;
   }
+  if (!rolling) return c;
   c.relativeAngularVelocity = second.angularVelocity() - first.angularVelocity();
   const double armFirst = first.isFixed() ? 0.0 : (point - first.position).norm();
   const double armSecond = second.isFixed() ? 0.0 : (point - second.position).norm();
   c.rollingRadius = armFirst > 0.0 && armSecond > 0.0 ? armFirst * armSecond / (armFirst + armSecond)
                                                       : armFirst + armSecond;
-  const Eigen::Vector3d rolling = tangentialPart(c.relativeAngularVelocity, normal);
-  const double rollingNorm = rolling.norm();
-  if (rollingNorm > 0.0) {
-    const Eigen::Vector3d u = rolling / rollingNorm;
+  const Eigen::Vector3d turning = tangentialPart(c.relativeAngularVelocity, normal);
+  const double turningNorm = turning.norm();
+  if (turningNorm > 0.0) {
+    const Eigen::Vector3d u = turning / turningNorm;
     const double inverseRolling = inverseInertiaAbout(first, u) + inverseInertiaAbout(second, u);
     c.rollingInertia = inverseRolling > 0.0 ? 1.0 / inverseRolling : 0.0;
   }

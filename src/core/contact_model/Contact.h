@@ -74,8 +74,11 @@ double inverseMassAt(const dynamics::RigidBody& body, const Eigen::Vector3d& poi
 // u . I^-1 u of `body` for the unit world `axis` (0 for a fixed body or rotation off).
 double inverseInertiaAbout(const dynamics::RigidBody& body, const Eigen::Vector3d& axis);
 
-// The contact of two rigid bodies at `point` (velocities of their material points there).
+// The contact of two rigid bodies at `point` (velocities of their material points there); the
+// rolling fields (relativeAngularVelocity, rollingRadius, rollingInertia) only with `rolling`
+// (a model with a rolling sub-model: the others need not pay for them), zero otherwise.
 Contact makeContact(const dynamics::RigidBody& first, const dynamics::RigidBody& second,
-                    const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double penetration);
+                    const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double penetration,
+                    bool rolling = false);
 
 }  // namespace spacetree::contact_model
