@@ -141,11 +141,25 @@ std::size_t ContactMerger::merge(const std::vector<ContactPoint>& raw, double me
   loads_.assign(points, 0.0);
   pointSums_.assign(points, Vector3d::Zero());
   normalSums_.assign(points, Vector3d::Zero());
-  for (const Group& g : groups_) {
+  // K_ij is symmetric: each pair once. Group g's sum still takes its terms in ascending j (those
+  // of j < g while j was the outer group), so it rounds as a sum over j in order would.
+  const std::size_t nGroups = groups_.size();
+  kinSums_.resize(nGroups);
+  for (std::size_t g = 0; g < nGroups; ++g)
+    kinSums_[g] = groups_[g].count * raw[groups_[g].raw].penetration;
+  for (std::size_t g = 0; g < nGroups; ++g) {
+    const ContactPoint& c = raw[groups_[g].raw];
+    for (std::size_t h = g + 1; h < nGroups; ++h) {
+      const ContactPoint& d = raw[groups_[h].raw];
+      const double k = kinship(c, d, mergeDistance, options.mergeNormalCosine);
+      kinSums_[g] += groups_[h].count * k * d.penetration;
+      kinSums_[h] += groups_[g].count * k * c.penetration;
+    }
+  }
+  for (std::size_t gi = 0; gi < nGroups; ++gi) {
+    const Group& g = groups_[gi];
     const ContactPoint& c = raw[g.raw];
-    double kin = g.count * c.penetration;
-    for (const Group& h : groups_)
-      if (&h != &g) kin += h.count * kinship(c, raw[h.raw], mergeDistance, options.mergeNormalCosine) * raw[h.raw].penetration;
+    const double kin = kinSums_[gi];
     const double share = kin > 0.0 ? g.count * c.penetration * c.penetration / kin : 0.0;
     loads_[g.point] += share;
     pointSums_[g.point] += share * c.point;

@@ -61,6 +61,7 @@ class ContactMerger {
   std::vector<double> weights_;              // per point: sum of its raw penetrations
   // per point: sum of its raw p_i n_i while joining, then of s_i p_i n_i
   std::vector<double> loads_;                // per point: sum of s_i p_i
+  std::vector<double> kinSums_;              // per group: sum over groups of count K_ij p_j
   std::vector<Eigen::Vector3d> pointSums_;   // per point: sum of s_i p_i x_i
   std::vector<Eigen::Vector3d> normalSums_;
 };
