@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <string>
 
 #include "atom.h"
@@ -41,10 +40,9 @@ FixPropertyGlobal *TrimeshContactCoefficients::material(const char *name, bool p
   Fix *f = modify->find_fix_property(name,"property/global",pair ? "peratomtypepair" : "peratomtype",
                                      0,0,"pair_style trimesh",false);
   if (!f) {
+    // `why` names the pair_style keyword that can stand for the material, where there is one
     const std::string msg = std::string("Pair style trimesh: ") + why + " needs fix property/global " +
-                            name + (pair ? " peratomtypepair" : " peratomtype") +
-                            // where a keyword can stand for it (`why` names that keyword)
-                            (strstr(why,"pair_style keyword") ? " (or the explicit pair_style keyword)" : "");
+                            name + (pair ? " peratomtypepair" : " peratomtype");
     error->all(FLERR,msg.c_str());
   }
   FixPropertyGlobal *g = static_cast<FixPropertyGlobal *>(f);
