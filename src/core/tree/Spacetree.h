@@ -44,6 +44,7 @@
 
 #include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
+#include "tree/RunTest.h"
 #include "tree/SpacetreeStatistics.h"
 #include "tree/VertexBitmap.h"
 #include "tree/VertexKey.h"
@@ -185,18 +186,22 @@ class Spacetree {
   }
 
   // What the traversal calls (positions in the sorted arrays): onPair(a, b) for one candidate
-  // pair, and onPair.range(a, first, last, aActive) for a against each of the contiguous
-  // positions [first, last) in order, skipping the pairs of two inactive particles (aActive:
-  // whether a is active); onPair.finish() once at the end of the sweep. Candidates go to the
-  // visitor as they are; pairs within the cut-off are selected in blocks (see WithinVisitor).
+  // pair, and onPair.runs(aBegin, aEnd, from, to, triangle) for each a of [aBegin, aEnd), in
+  // order, against each of the contiguous positions [from, to) (triangle: [a + 1, to)) in
+  // order, skipping the pairs of two inactive particles; onPair.finish() once at the end of the
+  // sweep. Candidates go to the visitor as they are; pairs within the cut-off are selected in
+  // blocks (see WithinVisitor).
   template <class Visit>
   struct CandidateVisitor {
     const Spacetree& tree;
     Visit& visit;
     void operator()(std::int32_t a, std::int32_t b) const { visit(tree.sortedId_[a], tree.sortedId_[b]); }
-    void range(std::int32_t a, std::int32_t first, std::int32_t last, bool aActive) const {
-      for (std::int32_t b = first; b < last; ++b)
-        if (aActive || tree.isActive(b)) (*this)(a, b);
+    void runs(std::int32_t aBegin, std::int32_t aEnd, std::int32_t from, std::int32_t to, bool triangle) const {
+      for (std::int32_t a = aBegin; a < aEnd; ++a) {
+        const bool aActive = tree.isActive(a);
+        for (std::int32_t b = triangle ? a + 1 : from; b < to; ++b)
+          if (aActive || tree.isActive(b)) (*this)(a, b);
+      }
     }
     void finish() const {}
   };
@@ -204,7 +209,9 @@ class Spacetree {
   // computes every distance and keeps the positions within the cut-off, then the hits are
   // visited in order. On a dense level most candidates miss and most runs are short (one
   // particle per vertex against the 2-3 of a neighbouring row), so testing them as they come
-  // would pay a mispredicted branch per run; the block pass pays none.
+  // would pay a mispredicted branch per run; the block pass pays none. Longer runs (several
+  // particles per vertex) are pre-tested where they are found (RunTest.h), so only the pairs
+  // near or within the cut-off are queued.
   template <class Visit>
   struct WithinVisitor {
     const Spacetree& tree;
@@ -212,12 +219,16 @@ class Spacetree {
     double halo, scale;
     bool allActive;  // no inactive particle: no activity test per hit
     static constexpr std::int32_t kBlock = 1024, kShortRun = 4;
+    static constexpr std::int32_t kSlack = std::max(kShortRun, kRunTestSlack);
     std::int32_t queued = 0;
-    // not initialised: filled before read; kShortRun slots of slack for the short-run writes
-    std::int32_t first[kBlock + kShortRun], second[kBlock + kShortRun], hit[kBlock + kShortRun];
+    const RunTest testRun = selectedRunTest();
+    const RunTestParticles particles;
+    // not initialised: filled before read; slack for the short-run and run-test writes
+    std::int32_t first[kBlock + kSlack], second[kBlock + kSlack], hit[kBlock + kSlack];
 
     WithinVisitor(const Spacetree& t, Visit& v, double h, double s)
-        : tree(t), visit(v), halo(h), scale(s), allActive(t.nActive_ >= t.particleCount()) {}
+        : tree(t), visit(v), halo(h), scale(s), allActive(t.nActive_ >= t.particleCount()),
+          particles{t.sx_.data(), t.sy_.data(), t.sz_.data(), t.sr_.data(), h, s} {}
     double distanceSquared(std::int32_t a, std::int32_t b) const {
       const double dx = tree.sx_[a] - tree.sx_[b], dy = tree.sy_[a] - tree.sy_[b], dz = tree.sz_[a] - tree.sz_[b];
       return dx * dx + dy * dy + dz * dz;
@@ -231,36 +242,50 @@ class Spacetree {
       else
         visit(tree.sortedId_[a], tree.sortedId_[b], d2);
     }
-    // The callers queue only pairs with an active particle, except range() for an inactive a,
+    // The callers queue only pairs with an active particle, except runs() for an inactive a,
     // whose pairs with inactive particles the flush drops.
     void operator()(std::int32_t a, std::int32_t b) {
       first[queued] = a;
       second[queued] = b;
       if (++queued == kBlock) flush();
     }
-    void range(std::int32_t a, std::int32_t from, std::int32_t to, bool) {
-      // A short run (a dense level: the 0-3 particles of a forward row's k - 1 .. k + 1) is
-      // written as kShortRun slots whatever its length, and counted by its length: no branch
-      // on the length, which varies from run to run.
-      if (to - from <= kShortRun) {
-        for (std::int32_t t = 0; t < kShortRun; ++t) {
-          first[queued + t] = a;
-          second[queued + t] = from + t;
-        }
-        queued += std::max(to - from, 0);
-        if (queued >= kBlock) flush();
+    void runs(std::int32_t aBegin, std::int32_t aEnd, std::int32_t from, std::int32_t to, bool triangle) {
+      if (to - (triangle ? aBegin + 1 : from) >= kShortRun) {
+        testRuns(aBegin, aEnd, from, to, triangle);
         return;
       }
-      while (from < to) {
-        const std::int32_t take = std::min(to - from, kBlock - queued);
-        for (std::int32_t t = 0; t < take; ++t) {
+      // Short runs (a dense level: the 0-3 particles of a forward row's k - 1 .. k + 1) are
+      // each written as kShortRun slots whatever their length, and counted by their length:
+      // no branch on the length, which varies from run to run.
+      for (std::int32_t a = aBegin; a < aEnd; ++a) {
+        const std::int32_t b0 = triangle ? a + 1 : from;
+        for (std::int32_t t = 0; t < kShortRun; ++t) {
           first[queued + t] = a;
-          second[queued + t] = from + t;
+          second[queued + t] = b0 + t;
         }
-        queued += take;
-        from += take;
-        if (queued == kBlock) flush();
+        queued += std::max(to - b0, 0);
+        if (queued >= kBlock) flush();
       }
+    }
+    // Longer runs are pre-tested, all of a's at once when they fit in a block. Out of line: a
+    // dense pack of one particle per vertex never comes here.
+    [[gnu::noinline]] void testRuns(std::int32_t aBegin, std::int32_t aEnd, std::int32_t from, std::int32_t to,
+                                    bool triangle) {
+      const std::int64_t n = aEnd - aBegin, longest = to - (triangle ? aBegin + 1 : from);
+      const std::int64_t count = triangle ? n * longest - n * (n - 1) / 2 : n * longest;
+      if (count <= kBlock) {
+        if (queued + count > kBlock) flush();
+        queued = testRun(particles, aBegin, aEnd, from, to, triangle, first, second, queued);
+      } else {
+        for (std::int32_t a = aBegin; a < aEnd; ++a)
+          for (std::int32_t b = triangle ? a + 1 : from; b < to;) {
+            if (queued == kBlock) flush();
+            const std::int32_t take = std::min(to - b, kBlock - queued);
+            queued = testRun(particles, a, a + 1, b, b + take, false, first, second, queued);
+            b += take;
+          }
+      }
+      if (queued >= kBlock) flush();
     }
     void flush() {
       std::int32_t hits = 0;

@@ -99,7 +99,7 @@ void Spacetree::sweepLevel(int l, PairFunction& onPair, double pruneScale, std::
       const bool next = p + 1 < nv && keys[p + 1] == key + 1;
       const bool nextPlain = next && plain(p + 1, p + 2);
       const std::int32_t end = nextPlain ? level.vertices[p + 1].end : v.end;
-      for (std::int32_t a = v.begin; a < v.end; ++a) onPair.range(a, a + 1, end, isActive(a));
+      onPair.runs(v.begin, v.end, 0, end, true);
       candidatePairs += std::uint64_t(n) * (n - 1) / 2 + std::uint64_t(n) * std::uint64_t(end - v.end);
       if (next && !nextPlain) pairWith(p + 1);
       for (int c = 0; c < 4; ++c) {
@@ -115,7 +115,7 @@ void Spacetree::sweepLevel(int l, PairFunction& onPair, double pruneScale, std::
           continue;
         }
         const std::int32_t b0 = level.vertices[t0].begin, b1 = level.vertices[t - 1].end;
-        for (std::int32_t a = v.begin; a < v.end; ++a) onPair.range(a, b0, b1, isActive(a));
+        onPair.runs(v.begin, v.end, b0, b1, false);
         candidatePairs += std::uint64_t(n) * std::uint64_t(b1 - b0);
       }
       continue;

@@ -1,0 +1,210 @@
+// The pre-test of candidate runs (tree/RunTest.h) and the sweep that uses it: every version
+// keeps, in order, every pair the exact cut-off accepts and nothing beyond the margin; the
+// spacetree with several particles per vertex (long runs, with ghosts, pairs exactly at the
+// cut-off, runs of more candidates than one queue block) lists exactly the brute-force pairs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "sphere_cloud.h"
+#include "tree/RunTest.h"
+#include "tree/Spacetree.h"
+
+using spacetree::RunTest;
+using spacetree::RunTestParticles;
+using spacetree::Spacetree;
+using spacetree::SpacetreeOptions;
+
+namespace {
+
+struct SoA {
+  std::vector<double> x, y, z, r;
+};
+
+// The flush's exact decision, in its arithmetic.
+bool exactlyWithin(const SoA& s, double halo, double scale, int a, int b) {
+  const double dx = s.x[a] - s.x[b], dy = s.y[a] - s.y[b], dz = s.z[a] - s.z[b];
+  const double c = (s.r[a] + s.r[b] + halo) * scale;
+  return dx * dx + dy * dy + dz * dz <= c * c;
+}
+
+double relativeExcess(const SoA& s, double halo, double scale, int a, int b) {
+  const double dx = s.x[a] - s.x[b], dy = s.y[a] - s.y[b], dz = s.z[a] - s.z[b];
+  const double c = (s.r[a] + s.r[b] + halo) * scale;
+  return (dx * dx + dy * dy + dz * dz) / (c * c) - 1.0;
+}
+
+std::vector<std::pair<RunTest, const char*>> versions() {
+  std::vector<std::pair<RunTest, const char*>> v{{spacetree::portableRunTest(), "portable"}};
+  if (RunTest fast = spacetree::avx512RunTest()) v.push_back({fast, "avx512"});
+  return v;
+}
+
+// Random centres with a few pairs placed exactly at the cut-off (binary fractions).
+SoA runParticles(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  SoA s;
+  for (int i = 0; i < n; ++i) {
+    if (i % 7 == 3) {  // 0.375 from the previous one along an axis: 0.125 + 0.125 + 0.125
+      s.x.push_back(s.x.back() + 0.375);
+      s.y.push_back(s.y.back());
+      s.z.push_back(s.z.back());
+      s.r.push_back(0.125);
+      s.r[std::size_t(i - 1)] = 0.125;
+      continue;
+    }
+    s.x.push_back(std::ldexp(std::floor(u(rng) * 1024.0), -10));
+    s.y.push_back(std::ldexp(std::floor(u(rng) * 1024.0), -10));
+    s.z.push_back(std::ldexp(std::floor(u(rng) * 1024.0), -10));
+    s.r.push_back(0.05 + 0.2 * u(rng));
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST(RunTest, KeepsTheExactPairsInOrderAndNothingBeyondTheMargin) {
+  const SoA s = runParticles(160, 11);
+  const double halo = 0.125;
+  std::mt19937_64 rng(12);
+  for (const auto& [test, name] : versions()) {
+    for (const double scale : {1.0, 1.0 + 1e-9}) {
+      const RunTestParticles p{s.x.data(), s.y.data(), s.z.data(), s.r.data(), halo, scale};
+      std::size_t exactAtCut = 0, kept = 0;
+      for (int trial = 0; trial < 4000; ++trial) {
+        const bool triangle = trial % 3 == 0;
+        const int aBegin = int(rng() % 100), aCount = 1 + int(rng() % 6);
+        const int aEnd = aBegin + aCount;
+        const int from = triangle ? 0 : int(rng() % 120);
+        const int to = triangle ? std::min(160, aBegin + 1 + int(rng() % 30)) : from + int(rng() % 35);
+        std::vector<std::pair<int, int>> expected;
+        std::size_t candidates = 0;
+        for (int a = aBegin; a < aEnd; ++a)
+          for (int b = triangle ? a + 1 : from; b < to; ++b) {
+            ++candidates;
+            if (exactlyWithin(s, halo, scale, a, b)) expected.push_back({a, b});
+            if (relativeExcess(s, halo, scale, a, b) == 0.0) ++exactAtCut;
+          }
+        const int start = int(rng() % 5);  // slot the queue is at
+        std::vector<std::int32_t> first(start + candidates + spacetree::kRunTestSlack + 4, -7),
+            second(first.size(), -7);
+        const int end = test(p, aBegin, aEnd, from, to, triangle, first.data(), second.data(), start);
+        ASSERT_GE(end, start) << name;
+        // Nothing written past the candidates' slots plus the slack, nor before the start.
+        for (std::size_t t = start + candidates + spacetree::kRunTestSlack; t < first.size(); ++t)
+          ASSERT_TRUE(first[t] == -7 && second[t] == -7) << name << ": slot " << t << " written";
+        for (int t = 0; t < start; ++t) ASSERT_TRUE(first[t] == -7 && second[t] == -7) << name;
+        std::vector<std::pair<int, int>> got;
+        for (int t = start; t < end; ++t) got.push_back({first[t], second[t]});
+        kept += got.size();
+        // Order a-major, then by position, each a candidate, within the margin...
+        for (std::size_t t = 0; t < got.size(); ++t) {
+          const auto [a, b] = got[t];
+          ASSERT_TRUE(a >= aBegin && a < aEnd && b >= (triangle ? a + 1 : from) && b < to) << name;
+          if (t > 0) {
+            ASSERT_LT(got[t - 1], got[t]) << name;
+          }
+          EXPECT_LE(relativeExcess(s, halo, scale, a, b), 2e-12) << name << ": kept (" << a << ", " << b << ")";
+        }
+        // ... and every exact pair among them.
+        ASSERT_TRUE(std::includes(got.begin(), got.end(), expected.begin(), expected.end()))
+            << name << ": an exact pair was dropped (trial " << trial << ")";
+      }
+      if (scale == 1.0) {
+        EXPECT_GT(exactAtCut, 100u) << "the scene should hold pairs exactly at the cut-off";
+      }
+      EXPECT_GT(kept, 1000u);
+    }
+  }
+}
+
+namespace {
+
+using Particles = spacetree::testing::SphereCloud;
+using PairSet = std::set<std::pair<int, int>>;
+
+PairSet bruteForce(const Particles& p, double eps, int nActive) {
+  PairSet pairs;
+  for (int i = 0; i < p.size(); ++i)
+    for (int j = i + 1; j < p.size(); ++j) {
+      const double cut = p.r[i] + p.r[j] + 2.0 * eps;
+      if ((i < nActive || j < nActive) && p.distanceSquared(i, j) <= cut * cut) pairs.insert({i, j});
+    }
+  return pairs;
+}
+
+// The pairs of forEachPairWithin (tolerance 0), failing on a duplicate or a wrong distance.
+PairSet within(const Particles& p, double eps, int nActive) {
+  Spacetree tree(SpacetreeOptions{eps});
+  tree.build(p.positions(), p.r.data(), p.size(), nActive);
+  PairSet found;
+  tree.forEachPairWithin([&](int i, int j, double d2) {
+    EXPECT_TRUE(found.insert(std::minmax(i, j)).second) << "pair visited twice";
+    EXPECT_EQ(d2, p.distanceSquared(i, j));
+  });
+  return found;
+}
+
+void expectBruteForce(const Particles& p, double eps, int nActive, const char* what) {
+  const PairSet expected = bruteForce(p, eps, nActive);
+  if (nActive > 0) {
+    EXPECT_FALSE(expected.empty()) << what;
+  }
+  EXPECT_EQ(within(p, eps, nActive), expected) << what;
+}
+
+}  // namespace
+
+TEST(RunTest, SeveralParticlesPerVertexWithGhostsMatchBruteForce) {
+  // About 4 and 12 particles per vertex (cells = cut-off = 0.05): a vertex against the
+  // 12-40 of a forward row; the denser one has rows of more candidates than a queue block.
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const int n : {4000, 12000}) {
+    Particles p;
+    for (int i = 0; i < n; ++i) p.add(0.5 * u(rng), 0.5 * u(rng), 0.5 * u(rng), 0.02);
+    expectBruteForce(p, 0.005, n, "all owned");
+    expectBruteForce(p, 0.005, n * 3 / 5, "ghosts");
+    expectBruteForce(p, 0.005, 0, "only ghosts");
+  }
+}
+
+TEST(RunTest, RunsOfMoreCandidatesThanAQueueBlockMatchBruteForce) {
+  // 10-22 particles around each site of a lattice of the cell size (0.05, the cut-off):
+  // vertices of that many (still paired in full: dense), so a vertex against a forward row is
+  // up to 22 x 66 candidates, more than a queue block, and the queue fills in the middle of
+  // such runs at varying places.
+  std::mt19937_64 rng(22);
+  std::uniform_real_distribution<double> u(-0.012, 0.012);
+  Particles p;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k) {
+        const int count = 10 + int(rng() % 13);
+        for (int t = 0; t < count; ++t) p.add(0.05 * i + u(rng), 0.05 * j + u(rng), 0.05 * k + u(rng), 0.02);
+      }
+  expectBruteForce(p, 0.005, p.size(), "clumps");
+  expectBruteForce(p, 0.005, p.size() / 2, "clumps with ghosts");
+}
+
+TEST(RunTest, LatticePairsExactlyAtTheCutOffAreListed) {
+  // Spacing 0.375 with cut-off 0.125 + 0.125 + 2 * 0.25 = 0.75: about eight particles per
+  // vertex, and every second neighbour along an axis exactly at the cut-off (binary fractions:
+  // no rounding anywhere).
+  Particles p;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 10; ++k) p.add(0.375 * i, 0.375 * j, 0.375 * k, 0.125);
+  const PairSet all = bruteForce(p, 0.25, p.size());
+  std::size_t atCut = 0;
+  for (const auto& [i, j] : all) atCut += p.distanceSquared(i, j) == 0.5625 ? 1 : 0;
+  EXPECT_EQ(atCut, 3u * 8 * 10 * 10);  // (i, i + 2) along each axis
+  expectBruteForce(p, 0.25, p.size(), "lattice");
+  expectBruteForce(p, 0.25, 400, "lattice with ghosts");
+}
