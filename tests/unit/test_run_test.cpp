@@ -78,43 +78,52 @@ TEST(RunTest, KeepsTheExactPairsInOrderAndNothingBeyondTheMargin) {
       const RunTestParticles p{s.x.data(), s.y.data(), s.z.data(), s.r.data(), halo, scale};
       std::size_t exactAtCut = 0, kept = 0;
       for (int trial = 0; trial < 4000; ++trial) {
+        // A vertex [aBegin, aEnd) against 1-5 runs of 0-34 positions, the first maybe its own
+        // particles after a (triangle).
         const bool triangle = trial % 3 == 0;
-        const int aBegin = int(rng() % 100), aCount = 1 + int(rng() % 6);
-        const int aEnd = aBegin + aCount;
-        const int from = triangle ? 0 : int(rng() % 120);
-        const int to = triangle ? std::min(160, aBegin + 1 + int(rng() % 30)) : from + int(rng() % 35);
-        std::vector<std::pair<int, int>> expected;
-        std::size_t candidates = 0;
-        for (int a = aBegin; a < aEnd; ++a)
-          for (int b = triangle ? a + 1 : from; b < to; ++b) {
-            ++candidates;
-            if (exactlyWithin(s, halo, scale, a, b)) expected.push_back({a, b});
-            if (relativeExcess(s, halo, scale, a, b) == 0.0) ++exactAtCut;
-          }
+        const int aBegin = int(rng() % 100), aEnd = aBegin + 1 + int(rng() % 6);
+        std::vector<spacetree::CandidateRun> runs(1 + rng() % 5);
+        for (auto& run : runs) {
+          run.from = int(rng() % 120);
+          run.to = run.from + int(rng() % 35);
+        }
+        if (triangle) runs[0] = {aBegin, std::min(160, aEnd + int(rng() % 25))};
+        std::vector<std::pair<int, int>> expected, all;
+        for (std::size_t r = 0; r < runs.size(); ++r)
+          for (int a = aBegin; a < aEnd; ++a)
+            for (int b = r == 0 && triangle ? a + 1 : runs[r].from; b < runs[r].to; ++b) {
+              all.push_back({a, b});
+              if (exactlyWithin(s, halo, scale, a, b)) expected.push_back({a, b});
+              if (relativeExcess(s, halo, scale, a, b) == 0.0) ++exactAtCut;
+            }
         const int start = int(rng() % 5);  // slot the queue is at
-        std::vector<std::int32_t> first(start + candidates + spacetree::kRunTestSlack + 4, -7),
+        std::vector<std::int32_t> first(start + all.size() + spacetree::kRunTestSlack + 4, -7),
             second(first.size(), -7);
-        const int end = test(p, aBegin, aEnd, from, to, triangle, first.data(), second.data(), start);
+        const int end =
+            test(p, aBegin, aEnd, runs.data(), int(runs.size()), triangle, first.data(), second.data(), start);
         ASSERT_GE(end, start) << name;
         // Nothing written past the candidates' slots plus the slack, nor before the start.
-        for (std::size_t t = start + candidates + spacetree::kRunTestSlack; t < first.size(); ++t)
+        for (std::size_t t = start + all.size() + spacetree::kRunTestSlack; t < first.size(); ++t)
           ASSERT_TRUE(first[t] == -7 && second[t] == -7) << name << ": slot " << t << " written";
         for (int t = 0; t < start; ++t) ASSERT_TRUE(first[t] == -7 && second[t] == -7) << name;
+        // Kept: a subsequence of the candidates in sweep order (runs, then a, then position),
+        // each within the margin, holding every exact pair.
         std::vector<std::pair<int, int>> got;
         for (int t = start; t < end; ++t) got.push_back({first[t], second[t]});
         kept += got.size();
-        // Order a-major, then by position, each a candidate, within the margin...
-        for (std::size_t t = 0; t < got.size(); ++t) {
-          const auto [a, b] = got[t];
-          ASSERT_TRUE(a >= aBegin && a < aEnd && b >= (triangle ? a + 1 : from) && b < to) << name;
-          if (t > 0) {
-            ASSERT_LT(got[t - 1], got[t]) << name;
+        std::size_t next = 0, nextExact = 0;
+        for (const auto& pair : got) {
+          while (next < all.size() && all[next] != pair) {
+            ASSERT_FALSE(nextExact < expected.size() && all[next] == expected[nextExact])
+                << name << ": exact pair (" << all[next].first << ", " << all[next].second << ") dropped";
+            ++next;
           }
-          EXPECT_LE(relativeExcess(s, halo, scale, a, b), 2e-12) << name << ": kept (" << a << ", " << b << ")";
+          ASSERT_LT(next, all.size()) << name << ": (" << pair.first << ", " << pair.second << ") out of order";
+          if (nextExact < expected.size() && expected[nextExact] == pair) ++nextExact;
+          ++next;
+          EXPECT_LE(relativeExcess(s, halo, scale, pair.first, pair.second), 2e-12) << name;
         }
-        // ... and every exact pair among them.
-        ASSERT_TRUE(std::includes(got.begin(), got.end(), expected.begin(), expected.end()))
-            << name << ": an exact pair was dropped (trial " << trial << ")";
+        ASSERT_EQ(nextExact, expected.size()) << name << ": an exact pair was dropped (trial " << trial << ")";
       }
       if (scale == 1.0) {
         EXPECT_GT(exactAtCut, 100u) << "the scene should hold pairs exactly at the cut-off";
@@ -139,15 +148,20 @@ PairSet bruteForce(const Particles& p, double eps, int nActive) {
   return pairs;
 }
 
-// The pairs of forEachPairWithin (tolerance 0), failing on a duplicate or a wrong distance.
+// The pairs of forEachPairWithin (tolerance 0), failing on a duplicate or a wrong distance;
+// forEachCandidatePair must visit each of them once, and no pair twice.
 PairSet within(const Particles& p, double eps, int nActive) {
   Spacetree tree(SpacetreeOptions{eps});
   tree.build(p.positions(), p.r.data(), p.size(), nActive);
-  PairSet found;
+  PairSet found, candidates;
   tree.forEachPairWithin([&](int i, int j, double d2) {
     EXPECT_TRUE(found.insert(std::minmax(i, j)).second) << "pair visited twice";
     EXPECT_EQ(d2, p.distanceSquared(i, j));
   });
+  bool twice = false;
+  tree.forEachCandidatePair([&](int i, int j) { twice |= !candidates.insert(std::minmax(i, j)).second; });
+  EXPECT_FALSE(twice) << "candidate visited twice";
+  EXPECT_TRUE(std::includes(candidates.begin(), candidates.end(), found.begin(), found.end()));
   return found;
 }
 

@@ -1,5 +1,6 @@
 // Pre-test of candidate runs for the within-cut-off sweep (Spacetree::WithinVisitor): each
-// particle a of [aBegin, aEnd) against the contiguous sorted positions [from(a), to), keeping
+// particle a of [aBegin, aEnd) (a vertex) against runs of contiguous sorted positions (its own
+// particles after a, and each forward row's three neighbouring vertices), keeping
 // the pairs whose squared distance is at most kRunTestMargin times the squared cut-off
 // ((r_a + r_b + halo) scale)^2. The kept pairs are appended, a-major and in position order, to
 // the visitor's queue (first, second), whose flush then decides each pair with the exact
@@ -29,12 +30,18 @@ constexpr double kRunTestMargin = 1.0 + 1e-12;
 // Slots a test may write beyond the last kept pair (the queue must have this much slack).
 constexpr std::int32_t kRunTestSlack = 8;
 
-// Tests a in [aBegin, aEnd) against [triangle ? a + 1 : from, to) and writes the kept pairs to
-// first[q..], second[q..]; returns q plus their count. The caller guarantees room for every
-// candidate plus kRunTestSlack slots.
-using RunTest = std::int32_t (*)(const RunTestParticles& p, std::int32_t aBegin, std::int32_t aEnd, std::int32_t from,
-                                 std::int32_t to, bool triangle, std::int32_t* first, std::int32_t* second,
-                                 std::int32_t q);
+// Contiguous candidate positions [from, to).
+struct CandidateRun {
+  std::int32_t from, to;
+};
+
+// Tests a in [aBegin, aEnd) against each run in turn (run-major, then a, then position; the
+// first run as a triangle when `triangle`: [a + 1, to)) and writes the kept pairs to first[q..],
+// second[q..]; returns q plus their count. The caller guarantees room for every candidate
+// plus kRunTestSlack slots.
+using RunTest = std::int32_t (*)(const RunTestParticles& p, std::int32_t aBegin, std::int32_t aEnd,
+                                 const CandidateRun* runs, int nRuns, bool triangle, std::int32_t* first,
+                                 std::int32_t* second, std::int32_t q);
 
 // The fastest version this processor runs (chosen once).
 RunTest selectedRunTest();

@@ -186,11 +186,12 @@ class Spacetree {
   }
 
   // What the traversal calls (positions in the sorted arrays): onPair(a, b) for one candidate
-  // pair, and onPair.runs(aBegin, aEnd, from, to, triangle) for each a of [aBegin, aEnd), in
+  // pair, onPair.runs(aBegin, aEnd, from, to, triangle) for each a of [aBegin, aEnd), in
   // order, against each of the contiguous positions [from, to) (triangle: [a + 1, to)) in
-  // order, skipping the pairs of two inactive particles; onPair.finish() once at the end of the
-  // sweep. Candidates go to the visitor as they are; pairs within the cut-off are selected in
-  // blocks (see WithinVisitor).
+  // order, skipping the pairs of two inactive particles, and onPair.vertexRuns(aBegin, aEnd,
+  // runs, nRuns) for the same on each run in turn, the first a triangle (the runs of one
+  // vertex); onPair.finish() once at the end of the sweep. Candidates go to the visitor as they
+  // are; pairs within the cut-off are selected in blocks (see WithinVisitor).
   template <class Visit>
   struct CandidateVisitor {
     const Spacetree& tree;
@@ -203,15 +204,18 @@ class Spacetree {
           if (aActive || tree.isActive(b)) (*this)(a, b);
       }
     }
+    void vertexRuns(std::int32_t aBegin, std::int32_t aEnd, const CandidateRun* list, int nRuns) const {
+      for (int run = 0; run < nRuns; ++run) runs(aBegin, aEnd, list[run].from, list[run].to, run == 0);
+    }
     void finish() const {}
   };
   // Candidates are queued (in sweep order) and tested a block at a time: one branch-free pass
   // computes every distance and keeps the positions within the cut-off, then the hits are
   // visited in order. On a dense level most candidates miss and most runs are short (one
   // particle per vertex against the 2-3 of a neighbouring row), so testing them as they come
-  // would pay a mispredicted branch per run; the block pass pays none. Longer runs (several
-  // particles per vertex) are pre-tested where they are found (RunTest.h), so only the pairs
-  // near or within the cut-off are queued.
+  // would pay a mispredicted branch per run; the block pass pays none. On a level of several
+  // particles per vertex the runs of a vertex are pre-tested where they are found (RunTest.h),
+  // so only the pairs near or within the cut-off are queued.
   template <class Visit>
   struct WithinVisitor {
     const Spacetree& tree;
@@ -220,11 +224,12 @@ class Spacetree {
     bool allActive;  // no inactive particle: no activity test per hit
     static constexpr std::int32_t kBlock = 1024, kShortRun = 4;
     static constexpr std::int32_t kSlack = std::max(kShortRun, kRunTestSlack);
+    static constexpr std::int32_t kQueuedRun = 16;  // see testRun
     std::int32_t queued = 0;
-    const RunTest testRun = selectedRunTest();
-    const RunTestParticles particles;
     // not initialised: filled before read; slack for the short-run and run-test writes
     std::int32_t first[kBlock + kSlack], second[kBlock + kSlack], hit[kBlock + kSlack];
+    const RunTest testCandidates = selectedRunTest();
+    const RunTestParticles particles;
 
     WithinVisitor(const Spacetree& t, Visit& v, double h, double s)
         : tree(t), visit(v), halo(h), scale(s), allActive(t.nActive_ >= t.particleCount()),
@@ -250,8 +255,8 @@ class Spacetree {
       if (++queued == kBlock) flush();
     }
     void runs(std::int32_t aBegin, std::int32_t aEnd, std::int32_t from, std::int32_t to, bool triangle) {
-      if (to - (triangle ? aBegin + 1 : from) >= kShortRun) {
-        testRuns(aBegin, aEnd, from, to, triangle);
+      if (to - (triangle ? aBegin + 1 : from) > kShortRun) {
+        testRun(aBegin, aEnd, from, to, triangle);
         return;
       }
       // Short runs (a dense level: the 0-3 particles of a forward row's k - 1 .. k + 1) are
@@ -267,23 +272,52 @@ class Spacetree {
         if (queued >= kBlock) flush();
       }
     }
-    // Longer runs are pre-tested, all of a's at once when they fit in a block. Out of line: a
-    // dense pack of one particle per vertex never comes here.
-    [[gnu::noinline]] void testRuns(std::int32_t aBegin, std::int32_t aEnd, std::int32_t from, std::int32_t to,
+    void vertexRuns(std::int32_t aBegin, std::int32_t aEnd, const CandidateRun* list, int nRuns) {
+      testRuns(aBegin, aEnd, list, nRuns, true);
+    }
+    // A longer run of a level of about one particle per vertex (a few are): queued whole up to
+    // kQueuedRun candidates per particle (the pre-test, called now and then, costs more there),
+    // else pre-tested.
+    [[gnu::noinline]] void testRun(std::int32_t aBegin, std::int32_t aEnd, std::int32_t from, std::int32_t to,
+                                   bool triangle) {
+      if (to - (triangle ? aBegin + 1 : from) > kQueuedRun) {
+        const CandidateRun run{from, to};
+        testRuns(aBegin, aEnd, &run, 1, triangle);
+        return;
+      }
+      for (std::int32_t a = aBegin; a < aEnd; ++a)
+        for (std::int32_t b = triangle ? a + 1 : from; b < to;) {
+          const std::int32_t take = std::min(to - b, kBlock - queued);
+          for (std::int32_t t = 0; t < take; ++t) {
+            first[queued + t] = a;
+            second[queued + t] = b + t;
+          }
+          queued += take;
+          b += take;
+          if (queued == kBlock) flush();
+        }
+    }
+    // Pre-tests the runs, all at once when they fit in a block. Out of line: a dense pack of
+    // one particle per vertex never comes here.
+    [[gnu::noinline]] void testRuns(std::int32_t aBegin, std::int32_t aEnd, const CandidateRun* list, int nRuns,
                                     bool triangle) {
-      const std::int64_t n = aEnd - aBegin, longest = to - (triangle ? aBegin + 1 : from);
-      const std::int64_t count = triangle ? n * longest - n * (n - 1) / 2 : n * longest;
+      const std::int64_t n = aEnd - aBegin;
+      std::int64_t count = 0;
+      for (int run = 0; run < nRuns; ++run)
+        count += run == 0 && triangle ? n * (list[0].to - aBegin - 1) - n * (n - 1) / 2
+                                      : n * (list[run].to - list[run].from);
       if (count <= kBlock) {
         if (queued + count > kBlock) flush();
-        queued = testRun(particles, aBegin, aEnd, from, to, triangle, first, second, queued);
+        queued = testCandidates(particles, aBegin, aEnd, list, nRuns, triangle, first, second, queued);
       } else {
-        for (std::int32_t a = aBegin; a < aEnd; ++a)
-          for (std::int32_t b = triangle ? a + 1 : from; b < to;) {
-            if (queued == kBlock) flush();
-            const std::int32_t take = std::min(to - b, kBlock - queued);
-            queued = testRun(particles, a, a + 1, b, b + take, false, first, second, queued);
-            b += take;
-          }
+        for (int run = 0; run < nRuns; ++run)
+          for (std::int32_t a = aBegin; a < aEnd; ++a)
+            for (std::int32_t b = run == 0 && triangle ? a + 1 : list[run].from; b < list[run].to;) {
+              if (queued == kBlock) flush();
+              const CandidateRun chunk{b, std::min(list[run].to, b + kBlock - queued)};
+              queued = testCandidates(particles, a, a + 1, &chunk, 1, false, first, second, queued);
+              b = chunk.to;
+            }
       }
       if (queued >= kBlock) flush();
     }
@@ -310,8 +344,12 @@ class Spacetree {
   void sweep(PairFunction&& onPair, double pruneScale);
   // Pairs within the vertices of level l and between forward neighbours. kCrowded: the level
   // holds crowded vertices (else their branches are compiled out).
-  template <bool kCrowded, class PairFunction>
+  // kByVertex: a level of several particles per vertex, whose runs (mostly longer than the
+  // visitor's short ones) go to it a vertex at a time.
+  template <bool kCrowded, bool kByVertex, class PairFunction>
   void sweepLevel(int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons);
+  // Particles per vertex from which a level is swept kByVertex.
+  static constexpr double kByVertexParticlesPerVertex = 1.5;
   // Whether the virtual links of coarse level m on finer level l are found from the fine
   // vertices (each looking up the 3x3x3 coarse vertices around it) rather than from the coarse
   // particles (link balls), by the estimated cost of each; `around` is then the coarse level's
