@@ -51,14 +51,9 @@ class DenseLevel {
   std::uint64_t forEachPairWithin(Visit& visit, double halo, double scale) const;
 
  private:
-  // runs.range(s, first, last): the particle at position s against positions [first, last).
-  template <class Runs>
-  std::uint64_t forEachRun(Runs& runs) const;
-  // The two kinds of runs (DenseLevelSweep.h).
-  template <class Visit>
-  struct CandidateRuns;
-  template <class Visit>
-  struct WithinRuns;
+  // onRun(s, first, last): the particle at position s against positions [first, last).
+  template <class OnRun>
+  std::uint64_t forEachRun(OnRun&& onRun) const;
   std::int64_t cellOf(const double p[3]) const {
     const std::int64_t i = std::int64_t((p[0] - origin_[0]) * inverse_ + 0.5);
     const std::int64_t j = std::int64_t((p[1] - origin_[1]) * inverse_ + 0.5);

@@ -5,14 +5,15 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 #include "tree/DenseLevel.h"
 
 namespace spacetree {
 
-template <class Runs>
-std::uint64_t DenseLevel::forEachRun(Runs& runs) const {
+template <class OnRun>
+std::uint64_t DenseLevel::forEachRun(OnRun&& onRun) const {
   // Forward neighbours of cell (i, j, k): (i, j, k + 1), which follows the cell's own particles
   // in the order, and the rows (i, j + 1), (i + 1, j - 1), (i + 1, j), (i + 1, j + 1) at
   // k - 1 .. k + 1: the positions from the start of the row's cell k - 1 to the start of its
@@ -28,13 +29,13 @@ std::uint64_t DenseLevel::forEachRun(Runs& runs) const {
     if (s0 == s1) continue;
     const std::uint64_t n = std::uint64_t(s1 - s0);
     const std::int32_t end = start[c + 2];
-    for (std::int32_t s = s0; s < s1; ++s) runs.range(s, s + 1, end);
+    for (std::int32_t s = s0; s < s1; ++s) onRun(s, s + 1, end);
     candidates += n * (n - 1) / 2 + n * std::uint64_t(end - s1);
     for (int r = 0; r < 4; ++r) {
       const std::int64_t row = c + rowOffsets[r];
       const std::int32_t b0 = start[row - 1], b1 = start[row + 2];
       if (b0 == b1) continue;
-      for (std::int32_t s = s0; s < s1; ++s) runs.range(s, b0, b1);
+      for (std::int32_t s = s0; s < s1; ++s) onRun(s, b0, b1);
       candidates += n * std::uint64_t(b1 - b0);
     }
   }
@@ -42,58 +43,32 @@ std::uint64_t DenseLevel::forEachRun(Runs& runs) const {
 }
 
 template <class Visit>
-struct DenseLevel::CandidateRuns {
-  const DenseLevel& level;
-  Visit& visit;
-  void range(std::int32_t s, std::int32_t first, std::int32_t last) const {
-    const std::int32_t* order = level.order_.data();
+std::uint64_t DenseLevel::forEachCandidatePair(Visit& visit) const {
+  const std::int32_t* order = order_.data();
+  return forEachRun([&](std::int32_t s, std::int32_t first, std::int32_t last) {
     const std::int32_t a = order[s];
     for (std::int32_t t = first; t < last; ++t)
-      if (a < level.nActive_ || order[t] < level.nActive_) visit(a, order[t]);
-  }
-};
+      if (a < nActive_ || order[t] < nActive_) visit(a, order[t]);
+  });
+}
 
-// The candidates (as original indices) are queued and tested a block at a time, as the general
-// path's WithinVisitor does with its sorted copies: on a dense level most runs hold one to
-// three particles, and testing them as they come would pay a mispredicted branch per run. Here
-// the block pass reads the caller's arrays through the indices (a gather; the atoms of a pack
-// that was sorted or built in space order lie near each other).
 template <class Visit>
-struct DenseLevel::WithinRuns {
-  const DenseLevel& level;
-  Visit& visit;
-  double halo, scale;
-  bool allActive;
-  static constexpr std::int32_t kBlock = 1024, kShortRun = kOrderSlack;
-  std::int32_t queued = 0;
+std::uint64_t DenseLevel::forEachPairWithin(Visit& visit, double halo, double scale) const {
+  // The candidates (as original indices) are queued and tested a block at a time, as the
+  // general path's WithinVisitor does with its sorted copies: on a dense level most runs hold
+  // one to three particles, and testing them as they come would pay a mispredicted branch per
+  // run. Here the block pass reads the caller's arrays through the indices (a gather; the atoms
+  // of a pack that was sorted or built in space order lie near each other).
+  constexpr std::int32_t kBlock = 1024, kShortRun = kOrderSlack;
   // not initialised: filled before read; kShortRun slots of slack for the short-run writes
   std::int32_t first[kBlock + kShortRun], second[kBlock + kShortRun], hit[kBlock + kShortRun];
-
-  WithinRuns(const DenseLevel& l, Visit& v, double h, double s)
-      : level(l), visit(v), halo(h), scale(s), allActive(l.nActive_ >= l.n_) {}
-  void range(std::int32_t s, std::int32_t from, std::int32_t to) {
-    const std::int32_t* order = level.order_.data();
-    const std::int32_t a = order[s];
-    // A short run is written as kShortRun slots whatever its length (the order has that many
-    // positions of slack) and counted by its length: no branch on the length.
-    if (to - from <= kShortRun) {
-      for (std::int32_t t = 0; t < kShortRun; ++t) {
-        first[queued + t] = a;
-        second[queued + t] = order[from + t];
-      }
-      queued += to - from;
-      if (queued >= kBlock) flush();
-      return;
-    }
-    for (; from < to; ++from) {
-      first[queued] = a;
-      second[queued] = order[from];
-      if (++queued == kBlock) flush();
-    }
-  }
-  void flush() {
-    const double (*x)[3] = level.x_;
-    const double* radius = level.radius_;
+  std::int32_t queued = 0;
+  const bool allActive = nActive_ >= n_;
+  const double (*x)[3] = x_;
+  const double* radius = radius_;
+  const std::int32_t* order = order_.data();
+  // Tests the first `queued` slots; takes the fill by value, so the walk keeps it in a register.
+  auto test = [&](std::int32_t queued) __attribute__((noinline)) {
     std::int32_t hits = 0;
     for (std::int32_t t = 0; t < queued; ++t) {
       const std::int32_t a = first[t], b = second[t];
@@ -104,7 +79,7 @@ struct DenseLevel::WithinRuns {
     }
     for (std::int32_t h = 0; h < hits; ++h) {
       const std::int32_t a = first[hit[h]], b = second[hit[h]];
-      if (!allActive && a >= level.nActive_ && b >= level.nActive_) continue;
+      if (!allActive && a >= nActive_ && b >= nActive_) continue;
       const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
       const double d2 = dx * dx + dy * dy + dz * dz;
       if constexpr (std::is_invocable_v<Visit&, int, int, double, double>)
@@ -112,21 +87,31 @@ struct DenseLevel::WithinRuns {
       else
         visit(a, b, d2);
     }
-    queued = 0;
-  }
-};
-
-template <class Visit>
-std::uint64_t DenseLevel::forEachCandidatePair(Visit& visit) const {
-  CandidateRuns<Visit> runs{*this, visit};
-  return forEachRun(runs);
-}
-
-template <class Visit>
-std::uint64_t DenseLevel::forEachPairWithin(Visit& visit, double halo, double scale) const {
-  WithinRuns<Visit> runs(*this, visit, halo, scale);
-  const std::uint64_t candidates = forEachRun(runs);
-  runs.flush();
+  };
+  const std::uint64_t candidates = forEachRun([&](std::int32_t s, std::int32_t from, std::int32_t to) {
+    const std::int32_t a = order[s];
+    // A short run is written as kShortRun slots whatever its length (the order has that many
+    // positions of slack) and counted by its length: no branch on the length.
+    if (to - from <= kShortRun) {
+      std::memcpy(second + queued, order + from, sizeof(std::int32_t) * kShortRun);  // one vector load
+      for (std::int32_t t = 0; t < kShortRun; ++t) first[queued + t] = a;
+      queued += to - from;
+      if (queued >= kBlock) {
+        test(queued);
+        queued = 0;
+      }
+      return;
+    }
+    for (; from < to; ++from) {
+      first[queued] = a;
+      second[queued] = order[from];
+      if (++queued == kBlock) {
+        test(queued);
+        queued = 0;
+      }
+    }
+  });
+  test(queued);
   return candidates;
 }
 
