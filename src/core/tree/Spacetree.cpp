@@ -114,8 +114,8 @@ bool Spacetree::placeDense(const double (*x)[3], const double* radius, int n, co
   // One populated level: the biggest particle fits the finest level (the smallest always does).
   const int depth = levelCount() - 1;
   if (meshSizes_[depth] < requiredMeshSize(maxRadius)) return false;
-  if (!dense_.build(x, radius, n, nActive_, origin_.data(), inverseMeshSizes_[depth], hi, kSweepAndPruneMinParticles))
-    return false;
+  static_assert(DenseLevel::kMaxPerVertex == kSweepAndPruneMinParticles, "crowded means the same on both paths");
+  if (!dense_.build(x, radius, n, nActive_, origin_.data(), inverseMeshSizes_[depth], hi)) return false;
   releaseGeneralStorage();
   stats_.levels[depth].realParticles = std::uint64_t(n);
   stats_.levels[depth].vertices = dense_.occupiedVertices();
