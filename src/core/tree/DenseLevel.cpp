@@ -11,7 +11,7 @@ void DenseLevel::release() {
 }
 
 bool DenseLevel::build(const double (*x)[3], const double* radius, int n, int nActive, const double origin[3],
-                       double inverseMeshSize, const double highest[3]) {
+                       double inverseMeshSize, const double highest[3], bool uniform) {
   forget();
   occupied_ = 0;
   for (int d = 0; d < 3; ++d) origin_[d] = origin[d];
@@ -54,6 +54,7 @@ bool DenseLevel::build(const double (*x)[3], const double* radius, int n, int nA
   radius_ = radius;
   n_ = n;
   nActive_ = nActive;
+  uniform_ = uniform;
   occupied_ = occupied;
   return true;
 }

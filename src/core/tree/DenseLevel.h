@@ -32,8 +32,9 @@ class DenseLevel {
   // Returns false, holding no storage, when the pack is not dense (more than
   // kCellsPerOccupiedVertex cells per occupied vertex) or a vertex holds kMaxPerVertex particles
   // or more. The arrays must stay unchanged until the last sweep of this build.
+  // uniform: every radius is the same.
   bool build(const double (*x)[3], const double* radius, int n, int nActive, const double origin[3],
-             double inverseMeshSize, const double highest[3]);
+             double inverseMeshSize, const double highest[3], bool uniform);
   // Forgets the build, keeping the storage (the next build reuses it).
   void forget() { x_ = nullptr; }
   // Frees the storage (the tree's general path is in use).
@@ -71,6 +72,7 @@ class DenseLevel {
   const double (*x_)[3] = nullptr;
   const double* radius_ = nullptr;
   std::int32_t n_ = 0, nActive_ = 0;
+  bool uniform_ = false;
   double origin_[3] = {0.0, 0.0, 0.0};
   double inverse_ = 0.0;
   std::int64_t slices_ = 0, rowsPerSlice_ = 0, cellsPerRow_ = 0;  // with the margin

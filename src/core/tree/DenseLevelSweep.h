@@ -79,14 +79,25 @@ std::uint64_t DenseLevel::forEachPairWithin(Visit& visit, double halo, double sc
   const double* radius = radius_;
   const std::int32_t* order = order_.data();
   // Tests the first `queued` slots; takes the fill by value, so the walk keeps it in a register.
+  // One size (every radius equal): the cut-off is one number, computed by the same expression.
+  const double uniformCut = (radius_[0] + radius_[0] + halo) * scale, uniformCut2 = uniformCut * uniformCut;
   auto test = [&](std::int32_t queued) __attribute__((noinline)) {
     std::int32_t hits = 0;
-    for (std::int32_t t = 0; t < queued; ++t) {
-      const std::int32_t a = first[t], b = second[t];
-      const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
-      const double c = (radius[a] + radius[b] + halo) * scale;
-      hit[hits] = t;
-      hits += dx * dx + dy * dy + dz * dz <= c * c ? 1 : 0;
+    if (uniform_) {
+      for (std::int32_t t = 0; t < queued; ++t) {
+        const std::int32_t a = first[t], b = second[t];
+        const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
+        hit[hits] = t;
+        hits += dx * dx + dy * dy + dz * dz <= uniformCut2 ? 1 : 0;
+      }
+    } else {
+      for (std::int32_t t = 0; t < queued; ++t) {
+        const std::int32_t a = first[t], b = second[t];
+        const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
+        const double c = (radius[a] + radius[b] + halo) * scale;
+        hit[hits] = t;
+        hits += dx * dx + dy * dy + dz * dz <= c * c ? 1 : 0;
+      }
     }
     for (std::int32_t h = 0; h < hits; ++h) {
       const std::int32_t a = first[hit[h]], b = second[hit[h]];
