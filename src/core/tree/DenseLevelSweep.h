@@ -126,10 +126,16 @@ std::uint64_t DenseLevel::forEachPairWithin(Visit& visit, double halo, double sc
   };
   const std::uint64_t candidates = forEachCell([&](std::int32_t s0, std::int32_t s1, std::int32_t end,
                                                    const std::int32_t* b0, const std::int32_t* b1) {
-    for (std::int32_t s = s0; s < s1; ++s) {
-      const std::int32_t a = order[s];
-      queue(a, s + 1, end);
+    if (s1 - s0 == 1) {  // the common case of a dense pack: one particle per cell
+      const std::int32_t a = order[s0];
+      queue(a, s1, end);
       for (int r = 0; r < 4; ++r) queue(a, b0[r], b1[r]);
+    } else {
+      for (std::int32_t s = s0; s < s1; ++s) {
+        const std::int32_t a = order[s];
+        queue(a, s + 1, end);
+        for (int r = 0; r < 4; ++r) queue(a, b0[r], b1[r]);
+      }
     }
     if (queued >= kBlock) {
       test(queued);
