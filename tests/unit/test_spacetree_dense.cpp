@@ -130,6 +130,30 @@ TEST(SpacetreeDense, SeveralParticlesPerVertexAndRandomPacks) {
   expectExact(cloud, 0.1, 500, true, "random pack with ghosts");
 }
 
+TEST(SpacetreeDense, RadiiOfSeveralSizesOnOneCappedLevel) {
+  // With its depth capped (maxLevel 2), the tree puts radii 0.15 .. 0.35 all on its finest
+  // level (mesh ~1.0): the dense path then tests each candidate with its own radius sum.
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(0.0, 9.0), r(0.15, 0.35);
+  Particles p;
+  for (int i = 0; i < 700; ++i) p.add(u(rng), u(rng), u(rng), r(rng));
+  SpacetreeOptions options{0.1};
+  options.maxLevel = 2;
+  Spacetree tree(options);
+  tree.build(p.positions(), p.r.data(), p.size(), 600);
+  ASSERT_TRUE(tree.usesDenseLevel());
+  PairSet within;
+  bool exactValues = true;
+  tree.forEachPairWithin([&](int i, int j, double d2, double radiusSum) {
+    within.insert(std::minmax(i, j));
+    exactValues = exactValues && d2 == p.distanceSquared(std::min(i, j), std::max(i, j)) && radiusSum == p.r[i] + p.r[j];
+  });
+  EXPECT_TRUE(exactValues);
+  const PairSet expected = bruteForce(p, 0.1, 600);
+  EXPECT_GT(expected.size(), 100u);
+  EXPECT_EQ(within, expected);
+}
+
 TEST(SpacetreeDense, FlatAndThinBoxesStayExact) {
   // The box's margin weighs most in a flat or thin box: 20 x 6 x 5 vertices (600 occupied of
   // 21 x 8 x 7 cells with the margin) and a single plane of 25 x 25 (625 of 26 x 27 x 3) pass

@@ -11,7 +11,7 @@ void DenseLevel::release() {
 }
 
 bool DenseLevel::build(const double (*x)[3], const double* radius, int n, int nActive, const double origin[3],
-                       double inverseMeshSize, const double highest[3], std::int32_t maxPerVertex) {
+                       double inverseMeshSize, const double highest[3], bool uniform) {
   forget();
   occupied_ = 0;
   for (int d = 0; d < 3; ++d) origin_[d] = origin[d];
@@ -41,7 +41,7 @@ bool DenseLevel::build(const double (*x)[3], const double* radius, int n, int nA
     sum += start[c];
     start[c] = sum;
   }
-  if (std::int64_t(occupied) * kCellsPerOccupiedVertex < cells || largest >= maxPerVertex) {
+  if (std::int64_t(occupied) * kCellsPerOccupiedVertex < cells || largest >= kMaxPerVertex) {
     release();
     return false;
   }
@@ -54,6 +54,7 @@ bool DenseLevel::build(const double (*x)[3], const double* radius, int n, int nA
   radius_ = radius;
   n_ = n;
   nActive_ = nActive;
+  uniform_ = uniform;
   occupied_ = occupied;
   return true;
 }

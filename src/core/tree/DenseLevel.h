@@ -23,14 +23,18 @@ class DenseLevel {
  public:
   // The box (with its margin) may hold at most this many cells per occupied vertex.
   static constexpr std::int64_t kCellsPerOccupiedVertex = 4;
+  // A vertex holding this many particles or more is crowded (the general path sorts and
+  // prunes it): no dense level then.
+  static constexpr std::int32_t kMaxPerVertex = 8;
 
   // Sorts particles [0, n) into the cells of mesh size 1 / inverseMeshSize of the box from
   // `origin` (the smallest coordinates, so every index is >= 0) to `highest` (the largest).
   // Returns false, holding no storage, when the pack is not dense (more than
-  // kCellsPerOccupiedVertex cells per occupied vertex) or a vertex holds maxPerVertex particles
+  // kCellsPerOccupiedVertex cells per occupied vertex) or a vertex holds kMaxPerVertex particles
   // or more. The arrays must stay unchanged until the last sweep of this build.
+  // uniform: every radius is the same.
   bool build(const double (*x)[3], const double* radius, int n, int nActive, const double origin[3],
-             double inverseMeshSize, const double highest[3], std::int32_t maxPerVertex);
+             double inverseMeshSize, const double highest[3], bool uniform);
   // Forgets the build, keeping the storage (the next build reuses it).
   void forget() { x_ = nullptr; }
   // Frees the storage (the tree's general path is in use).
@@ -51,9 +55,11 @@ class DenseLevel {
   std::uint64_t forEachPairWithin(Visit& visit, double halo, double scale) const;
 
  private:
-  // onRun(s, first, last): the particle at position s against positions [first, last).
-  template <class OnRun>
-  std::uint64_t forEachRun(OnRun&& onRun) const;
+  // onCell(s0, s1, end, b0, b1) for each occupied cell: its particles at positions [s0, s1),
+  // each against the positions after it up to `end` (the rest of the cell and the next one)
+  // and the four rows [b0[r], b1[r]) (some may be empty); returns the candidates.
+  template <class OnCell>
+  std::uint64_t forEachCell(OnCell&& onCell) const;
   std::int64_t cellOf(const double p[3]) const {
     const std::int64_t i = std::int64_t((p[0] - origin_[0]) * inverse_ + 0.5);
     const std::int64_t j = std::int64_t((p[1] - origin_[1]) * inverse_ + 0.5);
@@ -66,6 +72,7 @@ class DenseLevel {
   const double (*x_)[3] = nullptr;
   const double* radius_ = nullptr;
   std::int32_t n_ = 0, nActive_ = 0;
+  bool uniform_ = false;
   double origin_[3] = {0.0, 0.0, 0.0};
   double inverse_ = 0.0;
   std::int64_t slices_ = 0, rowsPerSlice_ = 0, cellsPerRow_ = 0;  // with the margin

@@ -107,14 +107,16 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
   GridGeometry geometry;
   chooseRootCube(finestNeed, rootNeed, options_.maxLevel, geometry);
   resetLevels({lo[0], lo[1], lo[2]}, geometry.rootSize, geometry.depth);
-  if (!placeDense(x, radius, n, hi, maxRadius)) placeParticles(x, radius, n, nullptr);
+  if (!placeDense(x, radius, n, hi, minRadius, maxRadius)) placeParticles(x, radius, n, nullptr);
 }
 
-bool Spacetree::placeDense(const double (*x)[3], const double* radius, int n, const double hi[3], double maxRadius) {
+bool Spacetree::placeDense(const double (*x)[3], const double* radius, int n, const double hi[3], double minRadius,
+                           double maxRadius) {
   // One populated level: the biggest particle fits the finest level (the smallest always does).
   const int depth = levelCount() - 1;
   if (meshSizes_[depth] < requiredMeshSize(maxRadius)) return false;
-  if (!dense_.build(x, radius, n, nActive_, origin_.data(), inverseMeshSizes_[depth], hi, kSweepAndPruneMinParticles))
+  static_assert(DenseLevel::kMaxPerVertex == kSweepAndPruneMinParticles, "crowded means the same on both paths");
+  if (!dense_.build(x, radius, n, nActive_, origin_.data(), inverseMeshSizes_[depth], hi, minRadius == maxRadius))
     return false;
   releaseGeneralStorage();
   stats_.levels[depth].realParticles = std::uint64_t(n);

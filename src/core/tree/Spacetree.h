@@ -347,7 +347,8 @@ class Spacetree {
   void resetLevels(const std::array<double, 3>& origin, double rootSize, int depth);
   void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
   // The dense one-level path (DenseLevel.h) when the particles fit it; false: they do not.
-  bool placeDense(const double (*x)[3], const double* radius, int n, const double hi[3], double maxRadius);
+  bool placeDense(const double (*x)[3], const double* radius, int n, const double hi[3], double minRadius,
+                  double maxRadius);
   void releaseGeneralStorage();  // the dense path holds none of the general path's arrays
   // Its steps: the level and sort key of every particle, and, after the sort, the sorted arrays
   // and the levels' vertices; countMemory() sums the storage held.
