@@ -4,9 +4,14 @@
 // repeats, with the tree's counters per level (vertices, real particles, virtual links). The
 // LIGGGHTS list filling (per-atom arrays, pages, contact history) is not included. Times are
 // CPU time of the process (on a shared machine: not the time it waited for a core).
-//   bench_neighbor_phases <data file> <skin> [repeats]
+//   bench_neighbor_phases <data file> <skin> [repeats] [shuffled] [general]
+// shuffled: the atoms in a random order (as exchanges leave them in a run) instead of the
+// file's; general: the tree's general path even where the dense one-level path applies (the
+// same cube, given as a caller's geometry).
 #include <algorithm>
 #include <array>
+#include <cstring>
+#include <random>
 #include <ctime>
 #include <cstdio>
 #include <fstream>
@@ -60,22 +65,50 @@ int main(int argc, char** argv) {
   }
   const double skin = std::stod(argv[2]);
   const int repeats = argc > 3 ? std::stoi(argv[3]) : 7;
+  bool shuffle = false, general = false;
+  for (int a = 4; a < argc; ++a) {
+    shuffle = shuffle || std::strcmp(argv[a], "shuffled") == 0;
+    general = general || std::strcmp(argv[a], "general") == 0;
+  }
   std::vector<std::array<double, 3>> x;
   std::vector<double> r;
   if (!readAtoms(argv[1], x, r)) {
     std::fprintf(stderr, "cannot read atoms from %s\n", argv[1]);
     return 1;
   }
+  if (shuffle) {
+    std::vector<std::size_t> order(r.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), std::mt19937_64(2024));
+    std::vector<std::array<double, 3>> xs(x.size());
+    std::vector<double> rs(r.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      xs[i] = x[order[i]];
+      rs[i] = r[order[i]];
+    }
+    x.swap(xs);
+    r.swap(rs);
+  }
   const int n = int(r.size());
   const auto* xs = reinterpret_cast<const double(*)[3]>(x.data());
   SpacetreeOptions options;
   options.epsilon = 0.5 * skin;
   Spacetree tree(options);
+  GridGeometry geometry;  // general: the cube the tree picks for itself
+  if (general) {
+    tree.build(xs, r.data(), n, n);
+    geometry.origin = tree.origin();
+    geometry.rootSize = tree.rootSize();
+    geometry.depth = tree.levelCount() - 1;
+  }
   std::vector<double> build, sweep;
   std::uint64_t pairs = 0;
   for (int k = 0; k < repeats; ++k) {
     const double t0 = cpuMs();
-    tree.build(xs, r.data(), n, n);
+    if (general)
+      tree.build(xs, r.data(), n, n, geometry, nullptr);
+    else
+      tree.build(xs, r.data(), n, n);
     const double t1 = cpuMs();
     pairs = 0;
     tree.forEachPairWithin([&](int, int, double) { ++pairs; });
@@ -84,9 +117,10 @@ int main(int argc, char** argv) {
     sweep.push_back(t2 - t1);
   }
   const SpacetreeStatistics& s = tree.statistics();
-  std::printf("atoms,%d\npairs,%llu\ncandidates,%llu\nbuild_ms,%.3f\nsweep_ms,%.3f\nus_per_atom,%.4f\nmemory_mb,%.2f\n", n,
-              (unsigned long long)pairs, (unsigned long long)s.candidatePairs, median(build), median(sweep),
-              1e3 * (median(build) + median(sweep)) / n, s.memoryBytes / 1048576.0);
+  std::printf("atoms,%d\npairs,%llu\ncandidates,%llu\nbuild_ms,%.3f\nsweep_ms,%.3f\nus_per_atom,%.4f\nmemory_mb,%.2f\npath,%s\n",
+              n, (unsigned long long)pairs, (unsigned long long)s.candidatePairs, median(build), median(sweep),
+              1e3 * (median(build) + median(sweep)) / n, s.memoryBytes / 1048576.0,
+              tree.usesDenseLevel() ? "dense one-level" : "general");
   std::printf("level,mesh_size,vertices,real_particles,virtual_links,link_tests\n");
   for (std::size_t l = 0; l < s.levels.size(); ++l)
     if (s.levels[l].realParticles || s.levels[l].virtualLinks)

@@ -9,9 +9,14 @@
    history. */
 
 #include <algorithm>
+#include <climits>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "atom.h"
 #include "comm.h"
@@ -175,23 +180,6 @@ int largest_count(const int *numneigh, int nlocal)
   return maxcount;
 }
 
-// One atom's neighbours in ascending order (touching partners, stored as ~j < 0, first): a
-// canonical order whatever the sweep order. Lists are short: an insertion sort in place costs
-// less than a std::sort call per atom; the result is the same.
-inline void sort_neighbours(int *js, int n)
-{
-  if (n > 32) {
-    std::sort(js,js+n);
-    return;
-  }
-  for (int a = 1; a < n; a++) {
-    const int v = js[a];
-    int b = a;
-    for (; b > 0 && js[b-1] > v; b--) js[b] = js[b-1];
-    js[b] = v;
-  }
-}
-
 // 3. A big particle among thousands of small ones may exceed neigh_modify one: size the pages
 //    (of the list and of its contact-history list) from the tree instead of failing. Returns
 //    the new `one` (0: the pages were big enough).
@@ -224,30 +212,125 @@ struct Partners {
   double **history;
 };
 
-// Calls f(begin, end) for each maximal contiguous run of the chunks [first[i], first[i] +
-// size(i)) of MyPage pages: consecutive chunks of one page touch, a new page starts a new run.
-template <class T, class Size, class F>
-void for_each_run(T *const *first, int nlocal, Size size, F f)
+// Zeroes [b, e). A stretch bigger than a core's cache (the contact history of a scene of
+// 100 000s of pairs: MBs) is written with streaming stores: these zeros are read back only for
+// the pairs that come to touch, and through the cache each line would be read before being
+// written and would evict what the build still needs. Smaller stretches stay in the cache.
+template <class T>
+void zero(T *b, T *e)
 {
-  T *begin = NULL, *end = NULL;
-  for (int i = 0; i < nlocal; i++) {
-    T *const p = first[i];
-    if (p != end) {
-      if (begin != end) f(begin,end);
-      begin = end = p;
-    }
-    end += size(i);
+#ifdef __SSE2__
+  const std::size_t kStreamingBytes = std::size_t(1) << 20;
+  if (static_cast<std::size_t>(e - b)*sizeof(T) > kStreamingBytes) {
+    char *p = reinterpret_cast<char *>(b), *const end = reinterpret_cast<char *>(e);
+    for (; reinterpret_cast<std::uintptr_t>(p) & 15; p++) *p = 0;
+    const __m128i zeros = _mm_setzero_si128();
+    for (; p + 16 <= end; p += 16) _mm_stream_si128(reinterpret_cast<__m128i *>(p),zeros);
+    std::fill(p,end,char(0));
+    return;
   }
-  if (begin != end) f(begin,end);
+#endif
+  std::fill(b,e,T(0));
 }
+
+// A stretch of consecutive chunks of one page kind, zeroed when the next chunk starts
+// elsewhere (on a new page) or at the end.
+template <class T>
+struct StretchToZero {
+  T *begin = NULL, *end = NULL;
+  void add(T *b, T *e)
+  {
+    if (b != end) {
+      zero(begin,end);
+      begin = b;
+    }
+    end = e;
+  }
+  void finish()
+  {
+    zero(begin,end);
+    begin = end = NULL;
+  }
+};
+
+// a <= b afterwards, without a data-dependent branch (the difference taken in 64 bits cannot
+// overflow).
+inline void compare_exchange(int &a, int &b)
+{
+  const long long d = static_cast<long long>(b) - a;
+  const int shift = static_cast<int>(d & (d >> 63));  // min(b - a, 0)
+  a += shift;
+  b -= shift;
+}
+
+// Clears the judge's touching mark (~j -> j); returns 1 if it was set.
+inline int unmark(int &v)
+{
+  const int marked = static_cast<int>(static_cast<unsigned>(v) >> 31);
+  v ^= v >> 31;
+  return marked;
+}
+
+// One atom's neighbours in the canonical order whatever the sweep order: ascending, with the
+// touching ones (marked as ~j < 0 by the judge) first; then the marks are cleared. Returns how
+// many touch. Keys are distinct (one entry per pair), so every sort gives the same order. Lists
+// of up to 2 (nine atoms in ten of a dense one-size pack) and of 3 or 4 (most atoms beside a big
+// particle) are ordered without data-dependent branches: an insertion sort mispredicts about
+// once per list, which costs more than the sort itself.
+inline int order_neighbours(int *js, int n)
+{
+  if (n <= 2) {  // n = 1 reads and writes its entry twice; n = 0 a scratch entry
+    int scratch = 0;
+    int *const p = n ? js : &scratch;
+    const int last = n ? n-1 : 0;
+    int a = p[0], b = p[last];
+    compare_exchange(a,b);
+    const int touching = unmark(a) + (unmark(b) & -static_cast<int>(n == 2));
+    p[last] = b;
+    p[0] = a;
+    return touching;
+  }
+  if (n <= 4) {
+    int v0 = js[0], v1 = js[1], v2 = js[2];
+    const int pad = -static_cast<int>(n == 3);  // a fourth entry of INT_MAX sorts last
+    int v3 = (js[n-1] & ~pad) | (INT_MAX & pad);
+    compare_exchange(v0,v1);
+    compare_exchange(v2,v3);
+    compare_exchange(v0,v2);
+    compare_exchange(v1,v3);
+    compare_exchange(v1,v2);
+    const int touching = unmark(v0) + unmark(v1) + unmark(v2) + unmark(v3);
+    js[n-1] = v3;  // first: with n == 3 the padding is overwritten by v2
+    js[2] = v2;
+    js[1] = v1;
+    js[0] = v0;
+    return touching;
+  }
+  if (n > 32) {
+    std::sort(js,js+n);
+  } else {
+    for (int a = 1; a < n; a++) {
+      const int v = js[a];
+      int b = a;
+      for (; b > 0 && js[b-1] > v; b--) js[b] = js[b-1];
+      js[b] = v;
+    }
+  }
+  int touching = 0;
+  for (int k = 0; k < n; k++) touching += unmark(js[k]);
+  return touching;
+}
+
+// Entries of the chunks taken from a page at once (unless one atom alone has more): a page is
+// left for the next at most that far before its end.
+const int kBlock = 1024;
 
 // 4. LIGGGHTS' pages, filled as granular_bin_no_newton fills them: per owned atom its
 //    neighbours and, with contact history, the touching partners' history (zeros for new ones).
-//    Each atom's chunks (list, contact flags, history; sized by the judge's count) are taken
-//    first, the listed pairs go straight into them, then each list is sorted. Flags and
-//    history are zeroed and the touching marks cleared run by run over the pages, and only
-//    atoms that had partners look theirs up: per-entry branches on short lists of varying
-//    length cost more than these passes.
+//    The chunks of consecutive atoms (list, contact flags, history; sized by the judge's
+//    counts) are taken in blocks, one MyPage::get per block and page kind, and the flags and
+//    history are zeroed stretch by stretch of a page; the listed pairs go straight into the
+//    chunks; then each list is put in order and only atoms with partners look them up.
 void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partners, const int *tag,
                 int nlocal, Error *error)
 {
@@ -267,12 +350,14 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
   MyPage<int> *ipage_contact_flag = NULL;
   MyPage<double> *dpage_contact_hist = NULL;
   int dnum = 0;
+  int one = list->oneatom;  // the largest chunk MyPage::get hands out
   if (fix_history) {
     first_contact_flag = listgranhistory->firstneigh;
     first_contact_hist = listgranhistory->firstdouble;
     ipage_contact_flag = listgranhistory->ipage;
     dpage_contact_hist = listgranhistory->dpage;
     dnum = listgranhistory->dnum;
+    one = std::min(one,listgranhistory->oneatom);
   }
 
   ipage->reset();
@@ -280,45 +365,58 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
     ipage_contact_flag->reset();
     dpage_contact_hist->reset();
   }
-  // Chunks of known size (get: one call each); a count above neigh_modify one (size_pages
-  // prevents it) returns NULL before anything is written.
-  for (int i = 0; i < nlocal; i++) {
-    const int n = count[i];
-    int *neighptr = ipage->get(n);
-    if (!neighptr) error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
-    ilist[i] = i;
-    firstneigh[i] = neighptr + n;  // the fill cursor below: moves back to the chunk's start
+  // Blocks of consecutive atoms' chunks. A count above `one` (size_pages prevents it) is the
+  // overflow error before anything is written.
+  const int block = std::min(one,kBlock);
+  StretchToZero<int> flags_to_zero;
+  StretchToZero<double> history_to_zero;
+  for (int first = 0; first < nlocal;) {
+    if (count[first] > one) error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
+    int end = first + 1, size = count[first];
+    for (; end < nlocal && size + count[end] <= block; end++) size += count[end];
+    int *neigh = ipage->get(size);
+    if (!neigh) error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
+    int *flag = NULL;
+    double *hist = NULL;
     if (fix_history) {
-      int *contact_flag_ptr = ipage_contact_flag->get(n);
-      double *contact_hist_ptr = dpage_contact_hist->get(dnum*n);
-      if (!contact_flag_ptr || !contact_hist_ptr)
-        error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
-      first_contact_flag[i] = contact_flag_ptr;
-      first_contact_hist[i] = contact_hist_ptr;
+      flag = ipage_contact_flag->get(size);
+      hist = dpage_contact_hist->get(dnum*size);
+      if (!flag || !hist) error->one(FLERR,"Neighbor list overflow, boost neigh_modify one");
+      flags_to_zero.add(flag,flag+size);
+      history_to_zero.add(hist,hist+dnum*size);
     }
+    for (int i = first, offset = 0; i < end; i++) {
+      ilist[i] = i;
+      if (fix_history) {
+        first_contact_flag[i] = flag + offset;
+        first_contact_hist[i] = hist + dnum*offset;
+      }
+      offset += count[i];
+      firstneigh[i] = neigh + offset;  // the fill cursor below: moves back to the chunk's start
+    }
+    first = end;
   }
+  flags_to_zero.finish();
+  history_to_zero.finish();
+#ifdef __SSE2__
+  _mm_sfence();  // streamed zeros ordered before the history copies below
+#endif
   list->inum = nlocal;
 
   const spacetree::NeighbourSearch::ListedPairs &pairs = st.pairs;
   const int *pi = pairs.first.data(), *pj = pairs.second.data();
-  for (size_t p = 0; p < pairs.size(); p++) *--firstneigh[pi[p]] = pj[p];
+  const size_t npairs = pairs.size();  // (stores through int* would reload it)
+  for (size_t p = 0; p < npairs; p++) *--firstneigh[pi[p]] = pj[p];
 
-  if (fix_history) {
-    for_each_run(first_contact_flag,nlocal,[&](int i) { return count[i]; },
-                 [](int *b, int *e) { std::fill(b,e,0); });
-    for_each_run(first_contact_hist,nlocal,[&](int i) { return dnum*count[i]; },
-                 [](double *b, double *e) { std::fill(b,e,0.0); });
-  }
   for (int i = 0; i < nlocal; i++) {
-    const int n = numneigh[i];
     int *js = firstneigh[i];
-    sort_neighbours(js,n);
+    const int touching = order_neighbours(js,numneigh[i]);
     if (!fix_history || !npartner[i]) continue;
-    // the touching ones (marked ~j < 0) come first: a continued contact keeps its history
+    // the touching ones come first: a continued contact keeps its history
     int *contact_flag_ptr = first_contact_flag[i];
     double *contact_hist_ptr = first_contact_hist[i];
-    for (int k = 0; k < n && js[k] < 0; k++) {
-      const int j = ~js[k];
+    for (int k = 0; k < touching; k++) {
+      const int j = js[k];
       int m = 0;
       while (m < npartner[i] && partner[i][m] != tag[j]) m++;
       if (m == npartner[i]) continue;
@@ -326,10 +424,6 @@ void fill_pages(NeighList *list, const NeighSpacetree &st, const Partners &partn
       for (int d = 0; d < dnum; d++) contact_hist_ptr[k*dnum+d] = contacthistory[i][m*dnum+d];
     }
   }
-  // clear the touching marks (~j -> j) without a branch
-  for_each_run(firstneigh,nlocal,[&](int i) { return numneigh[i]; }, [](int *b, int *e) {
-    for (int *p = b; p < e; p++) *p ^= *p >> 31;
-  });
 }
 
 }

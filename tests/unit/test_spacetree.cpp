@@ -19,22 +19,9 @@ namespace {
 
 using Particles = spacetree::testing::SphereCloud;
 
-using PairSet = std::set<std::pair<int, int>>;
-
-bool isPair(const Particles& p, int i, int j, double eps) {
-  double d2 = 0.0;
-  for (int d = 0; d < 3; ++d) d2 += (p.x[i][d] - p.x[j][d]) * (p.x[i][d] - p.x[j][d]);
-  const double cut = p.r[i] + p.r[j] + 2.0 * eps;
-  return d2 <= cut * cut;
-}
-
-PairSet bruteForce(const Particles& p, double eps, int nActive) {
-  PairSet pairs;
-  for (int i = 0; i < p.size(); ++i)
-    for (int j = i + 1; j < p.size(); ++j)
-      if ((i < nActive || j < nActive) && isPair(p, i, j, eps)) pairs.insert({i, j});
-  return pairs;
-}
+using spacetree::testing::bruteForce;
+using spacetree::testing::isPair;
+using spacetree::testing::PairSet;
 
 // Runs the tree, fails the test on a duplicate, a self pair or a ghost-ghost pair, and
 // returns the candidates that pass the exact cut-off.

@@ -75,6 +75,8 @@ class NeighbourSearch {
 
  private:
   using Clock = std::chrono::steady_clock;
+  // Pairs reserved per particle (a dense pack of one size lists up to 6 within contact).
+  static constexpr std::size_t kReservedPairsPerParticle = 8;
   void buildTree(const double (*x)[3], const double (*v)[3], const double* radius, int n, int nActive);
   void refineAfterSweep(const double (*x)[3], const double (*v)[3], const double* radius, int n,
                         const ListedPairs& pairs);
@@ -91,6 +93,14 @@ void NeighbourSearch::findPairs(const double (*x)[3], const double (*v)[3], cons
                                 int nActive, double relativeTolerance, Judge&& judge, ListedPairs& pairs) {
   buildTree(x, v, radius, n, nActive);
   pairs.clear();
+  // Room for the pairs of a dense pack before the sweep: growing the vectors during the sweep
+  // copies them, and the copies stay in the process's peak memory. Reserved pages that are
+  // never written cost no memory.
+  const std::size_t room = std::size_t(n) * kReservedPairsPerParticle;
+  if (pairs.first.capacity() < room) {
+    pairs.first.reserve(room);
+    pairs.second.reserve(room);
+  }
   tree_.forEachPairWithin(
       [&](int a, int b, double squaredDistance, double radiusSum) {
         const int i = a < b ? a : b, j = a < b ? b : a;

@@ -89,15 +89,8 @@ void Spacetree::clear(int n, int nActive) {
     level.occupancyBuilt = false;
   }
   stats_ = SpacetreeStatistics{};
-  // Sized, not cleared: placeParticles writes every entry (clearing would zero-fill them all
-  // again on every build).
-  const std::size_t size = std::size_t(std::max(n, 0));
-  particleLevel_.resize(size);
-  sx_.resize(size);
-  sy_.resize(size);
-  sz_.resize(size);
-  sr_.resize(size);
-  sortedId_.resize(size);
+  particleCount_ = std::max(n, 0);
+  dense_.forget();
 }
 
 void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive) {
@@ -114,7 +107,38 @@ void Spacetree::build(const double (*x)[3], const double* radius, int n, int nAc
   GridGeometry geometry;
   chooseRootCube(finestNeed, rootNeed, options_.maxLevel, geometry);
   resetLevels({lo[0], lo[1], lo[2]}, geometry.rootSize, geometry.depth);
-  placeParticles(x, radius, n, nullptr);
+  if (!placeDense(x, radius, n, hi, minRadius, maxRadius)) placeParticles(x, radius, n, nullptr);
+}
+
+bool Spacetree::placeDense(const double (*x)[3], const double* radius, int n, const double hi[3], double minRadius,
+                           double maxRadius) {
+  // One populated level: the biggest particle fits the finest level (the smallest always does).
+  const int depth = levelCount() - 1;
+  if (meshSizes_[depth] < requiredMeshSize(maxRadius)) return false;
+  static_assert(DenseLevel::kMaxPerVertex == kSweepAndPruneMinParticles, "crowded means the same on both paths");
+  if (!dense_.build(x, radius, n, nActive_, origin_.data(), inverseMeshSizes_[depth], hi, minRadius == maxRadius))
+    return false;
+  releaseGeneralStorage();
+  stats_.levels[depth].realParticles = std::uint64_t(n);
+  stats_.levels[depth].vertices = dense_.occupiedVertices();
+  stats_.deepestPopulatedLevel = depth;
+  countMemory();
+  return true;
+}
+
+void Spacetree::releaseGeneralStorage() {
+  std::vector<std::int8_t>().swap(particleLevel_);
+  for (std::vector<double>* v : {&sx_, &sy_, &sz_, &sr_}) std::vector<double>().swap(*v);
+  std::vector<std::int32_t>().swap(sortedId_);
+  std::vector<KeyedIndex>().swap(sortKeys_);
+  std::vector<KeyedIndex>().swap(sortScratch_);
+  std::vector<KeyedIndex32>().swap(sortKeys32_);
+  std::vector<KeyedIndex32>().swap(sortScratch32_);
+  for (Level& level : levels_) {
+    const double meshSize = level.meshSize;
+    level = Level();
+    level.meshSize = meshSize;
+  }
 }
 
 void Spacetree::build(const double (*x)[3], const double* radius, int n, int nActive,
@@ -170,6 +194,16 @@ void Spacetree::placeParticles(const double (*x)[3], const double* radius, int n
   // Drop every particle to its level and key it by its nearest vertex there. Keys of a tree of
   // few levels fit into 32 bits: records of 8 bytes instead of 16 (half the sort's traffic and
   // memory); only the record vectors of the width in use hold storage.
+  // Sized, not cleared: every entry is written below (clearing would zero-fill them all again
+  // on every build).
+  dense_.release();
+  const std::size_t size = std::size_t(n);
+  particleLevel_.resize(size);
+  sx_.resize(size);
+  sy_.resize(size);
+  sz_.resize(size);
+  sr_.resize(size);
+  sortedId_.resize(size);
   const int levelCount = int(levels_.size());
   const SortKeyPacking packing(levelCount - 1);
   if (packing.keyBits <= 32) {
@@ -267,6 +301,7 @@ void Spacetree::countMemory() {
                         sortedId_.capacity() * sizeof(std::int32_t) + particleLevel_.capacity() +
                         (sortKeys_.capacity() + sortScratch_.capacity()) * sizeof(KeyedIndex) +
                         (sortKeys32_.capacity() + sortScratch32_.capacity()) * sizeof(KeyedIndex32);
+  bytes += dense_.memoryBytes();
   for (const Level& level : levels_)
     bytes += level.vertices.capacity() * sizeof(Vertex) + level.keys.capacity() * sizeof(std::uint64_t) +
              level.rows.capacity() * sizeof(Row) + level.slices.capacity() * sizeof(Slice) +

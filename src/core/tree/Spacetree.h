@@ -42,6 +42,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "tree/DenseLevel.h"
 #include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
 #include "tree/RunTest.h"
@@ -81,6 +82,10 @@ class Spacetree {
   // |x_i - x_j| <= r_i + r_j + 2 eps; the visitor applies the exact cut-off.
   template <class Visitor>
   void forEachCandidatePair(Visitor&& visit) {
+    if (dense_.built()) {
+      stats_.candidatePairs = dense_.forEachCandidatePair(visit);
+      return;
+    }
     sweep(CandidateVisitor<Visitor>{*this, visit}, 1.0 + kPruneMargin);
   }
 
@@ -92,11 +97,19 @@ class Spacetree {
   template <class Visitor>
   void forEachPairWithin(Visitor&& visit, double relativeTolerance = 0.0) {
     const double scale = 1.0 + relativeTolerance;
+    if (dense_.built()) {
+      stats_.candidatePairs = dense_.forEachPairWithin(visit, 2.0 * options_.epsilon, scale);
+      return;
+    }
     sweep(WithinVisitor<Visitor>(*this, visit, 2.0 * options_.epsilon, scale), scale * (1.0 + kPruneMargin));
   }
 
-  int levelOf(int particle) const { return particleLevel_[particle]; }
-  int particleCount() const { return int(particleLevel_.size()); }  // of the last build
+  int levelOf(int particle) const { return dense_.built() ? levelCount() - 1 : particleLevel_[particle]; }
+  int particleCount() const { return particleCount_; }  // of the last build
+  // Whether the last build took the dense one-level path (DenseLevel.h): every particle on the
+  // finest level, its occupied vertices at least a quarter of their box, none crowded. Only a
+  // build on a cube of the tree's own (not on a caller's grid) takes it.
+  bool usesDenseLevel() const { return dense_.built(); }
   int levelCount() const { return int(levels_.size()); }
   double meshSize(int level) const { return levels_[level].meshSize; }
   // Virtual-link radius of a coarser particle of radius r on the vertices of a level of mesh
@@ -396,6 +409,10 @@ class Spacetree {
   void clear(int n, int nActive);  // forget the last build
   void resetLevels(const std::array<double, 3>& origin, double rootSize, int depth);
   void placeParticles(const double (*x)[3], const double* radius, int n, const int* hostLevel);
+  // The dense one-level path (DenseLevel.h) when the particles fit it; false: they do not.
+  bool placeDense(const double (*x)[3], const double* radius, int n, const double hi[3], double minRadius,
+                  double maxRadius);
+  void releaseGeneralStorage();  // the dense path holds none of the general path's arrays
   // Its steps: the level and sort key of every particle, and, after the sort, the sorted arrays
   // and the levels' vertices; countMemory() sums the storage held.
   template <class Record>
@@ -461,12 +478,13 @@ class Spacetree {
   std::vector<Level> levels_;
   // Of levels_, contiguous (hostLevel, keyParticles).
   double meshSizes_[kMaxSpacetreeLevel + 1] = {}, inverseMeshSizes_[kMaxSpacetreeLevel + 1] = {};
-  int nActive_ = 0;
+  int nActive_ = 0, particleCount_ = 0;
 
   // Particles sorted by (level, vertex key), structure of arrays for streaming access.
   std::vector<double> sx_, sy_, sz_, sr_;
   std::vector<std::int32_t> sortedId_;
   std::vector<std::int8_t> particleLevel_;  // by original index (levels 0..kMaxSpacetreeLevel)
+  DenseLevel dense_;  // else: the dense one-level path
 
   // Scratch, kept to avoid allocation on every build.
   std::vector<KeyedIndex> sortKeys_, sortScratch_;        // keys of more than 32 bits

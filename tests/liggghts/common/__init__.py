@@ -8,4 +8,4 @@ from .outputs import (parse_atoms_dump, parse_dump_rows, parse_local_dump, parse
 from .checks import Checks, case_dispatch  # noqa: F401
 from .compare import (THERMO_RTOL, compare_pairsets, cross_pairs, cutoff_info,  # noqa: F401
                       report_thermo, thermo_diff)
-from .packs import PAIR_CASES, PAIR_VARS, SETTLE_GEN  # noqa: F401
+from .packs import PAIR_CASES, PAIR_VARS, SETTLE_GEN, SETTLE_WIDE_GEN  # noqa: F401

@@ -10,6 +10,10 @@ TEST is one of (see `check_neighbor_spacetree.py list`):
                      those of bin on 1 rank (as sets) and of bin on NP ranks (as multisets)
   thermo:settle:NP   thermo of a settling polydisperse pack (walls, gravity, hertz + history),
                      200 steps, full precision: spacetree vs bin on NP ranks within 1e-8 relative
+  thermo:settle_wide_skin:NP
+                     the same for 8000 grains, skin 2 mm, 600 steps: more than 1 MiB of contact
+                     history in one page (zeroed with streaming stores by spacetree), pairs that
+                     come into contact long after the build that listed them
   mesh:NP            the same for a pack falling onto an STL funnel (fix mesh/surface/stress +
                      fix wall/gran mesh)
   overflow:NP        crowded big particle (> 2000 neighbours): spacetree with the default
@@ -27,7 +31,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 import common as C  # noqa: E402
-from common import (PAIR_CASES, PAIR_VARS, SETTLE_GEN, Fail, compare_pairsets,  # noqa: E402
+from common import (PAIR_CASES, PAIR_VARS, SETTLE_GEN, SETTLE_WIDE_GEN, Fail, compare_pairsets,  # noqa: E402
                     cross_pairs, parse_atoms_dump, parse_local_dump, parse_stats, parse_thermo,
                     report_thermo, thermo_diff)
 
@@ -115,12 +119,24 @@ def test_thermo(R, deck, data_vars, np, label):
     for k in ("neighbors", "builds"):
         if sb.get(k) != ss.get(k):
             raise Fail("%s differs: bin %s, spacetree %s" % (k, sb.get(k), ss.get(k)))
-    return thb
+    return thb, ss
 
 
-def test_settle(R, np):
-    data = R.gen("settle.data", SETTLE_GEN)
-    thb = test_thermo(R, os.path.join(C.COMMON, "in.settle"), {"data": data}, np, "settle")
+# name -> (generator, in.settle variables, least contact history in bytes at the end (3 values
+# of 8 bytes per listed pair))
+SETTLE_CASES = {
+    "settle": (SETTLE_GEN, {}, 0),
+    "settle_wide_skin": (SETTLE_WIDE_GEN, {"skin": "2e-3", "nsteps": "600", "thermoevery": "20"}, 1 << 20),
+}
+
+
+def test_settle(R, name, np):
+    gen, extra, least_history = SETTLE_CASES[name]
+    data = R.gen(name + ".data", gen)
+    thb, stats = test_thermo(R, os.path.join(C.COMMON, "in.settle"), dict(extra, data=data), np, name)
+    history = 24 * stats.get("neighbors", 0) / np
+    if history <= least_history:
+        raise Fail("deck too weak: %.0f bytes of contact history per rank <= %d" % (history, least_history))
     cols, rows = thb
     j = cols.index("nc") if "nc" in cols else None
     if j is not None:
@@ -136,7 +152,7 @@ def test_settle(R, np):
 def test_mesh(R, np):
     stl = R.gen("funnel.stl", MESH_STL)
     data = R.gen("mesh.data", MESH_GEN)
-    thb = test_thermo(R, "in.mesh", {"data": data, "stl": stl}, np, "mesh")
+    thb, _ = test_thermo(R, "in.mesh", {"data": data, "stl": stl}, np, "mesh")
     cols, rows = thb
     jz = cols.index("cad[3]")
     fz = [r[jz] for r in rows]
@@ -196,7 +212,8 @@ def list_tests():
     t = []
     for c in PAIR_CASES:
         t += ["pairs:%s:1" % c, "pairs:%s:2" % c]
-    t += ["thermo:settle:1", "thermo:settle:2", "mesh:1", "mesh:2", "overflow:1", "overflow:2"]
+    t += ["thermo:settle:1", "thermo:settle:2", "thermo:settle_wide_skin:1", "mesh:1", "mesh:2",
+          "overflow:1", "overflow:2"]
     t += ["bad:%s" % n for n in EXPECTED_ERRORS]
     return t
 
@@ -204,8 +221,8 @@ def list_tests():
 def dispatch(R, parts):
     if parts[0] == "pairs" and len(parts) == 3 and parts[1] in PAIR_CASES:
         test_pairs(R, parts[1], int(parts[2]))
-    elif parts[0] == "thermo" and parts[1:2] == ["settle"] and len(parts) == 3:
-        test_settle(R, int(parts[2]))
+    elif parts[0] == "thermo" and len(parts) == 3 and parts[1] in SETTLE_CASES:
+        test_settle(R, parts[1], int(parts[2]))
     elif parts[0] == "mesh" and len(parts) == 2:
         test_mesh(R, int(parts[1]))
     elif parts[0] == "overflow" and len(parts) == 2:
