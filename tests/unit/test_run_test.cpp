@@ -136,23 +136,15 @@ TEST(RunTest, KeepsTheExactPairsInOrderAndNothingBeyondTheMargin) {
 namespace {
 
 using Particles = spacetree::testing::SphereCloud;
-using PairSet = std::set<std::pair<int, int>>;
-
-PairSet bruteForce(const Particles& p, double eps, int nActive) {
-  PairSet pairs;
-  for (int i = 0; i < p.size(); ++i)
-    for (int j = i + 1; j < p.size(); ++j) {
-      const double cut = p.r[i] + p.r[j] + 2.0 * eps;
-      if ((i < nActive || j < nActive) && p.distanceSquared(i, j) <= cut * cut) pairs.insert({i, j});
-    }
-  return pairs;
-}
+using spacetree::testing::bruteForce;
+using spacetree::testing::PairSet;
 
 // The pairs of forEachPairWithin (tolerance 0), failing on a duplicate or a wrong distance;
 // forEachCandidatePair must visit each of them once, and no pair twice.
 PairSet within(const Particles& p, double eps, int nActive) {
   Spacetree tree(SpacetreeOptions{eps});
   tree.build(p.positions(), p.r.data(), p.size(), nActive);
+  EXPECT_FALSE(tree.usesDenseLevel()) << "the scenes hold a big sphere: the multilevel sweep runs";
   PairSet found, candidates;
   tree.forEachPairWithin([&](int i, int j, double d2) {
     EXPECT_TRUE(found.insert(std::minmax(i, j)).second) << "pair visited twice";
@@ -178,11 +170,13 @@ void expectBruteForce(const Particles& p, double eps, int nActive, const char* w
 TEST(RunTest, SeveralParticlesPerVertexWithGhostsMatchBruteForce) {
   // About 4 and 12 particles per vertex (cells = cut-off = 0.05): a vertex against the
   // 12-40 of a forward row; the denser one has rows of more candidates than a queue block.
+  // Each with a big sphere (a second level: the multilevel sweep, not the dense one-level path).
   std::mt19937_64 rng(21);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (const int n : {4000, 12000}) {
     Particles p;
     for (int i = 0; i < n; ++i) p.add(0.5 * u(rng), 0.5 * u(rng), 0.5 * u(rng), 0.02);
+    p.add(0.25, 0.25, -0.1, 0.12);  // a big one touching the cloud: two levels
     expectBruteForce(p, 0.005, n, "all owned");
     expectBruteForce(p, 0.005, n * 3 / 5, "ghosts");
     expectBruteForce(p, 0.005, 0, "only ghosts");
@@ -193,7 +187,8 @@ TEST(RunTest, RunsOfMoreCandidatesThanAQueueBlockMatchBruteForce) {
   // 10-22 particles around each site of a lattice of the cell size (0.05, the cut-off):
   // vertices of that many (still paired in full: dense), so a vertex against a forward row is
   // up to 22 x 66 candidates, more than a queue block, and the queue fills in the middle of
-  // such runs at varying places.
+  // such runs at varying places. (More than 8 per vertex: the multilevel sweep, not the dense
+  // one-level path.)
   std::mt19937_64 rng(22);
   std::uniform_real_distribution<double> u(-0.012, 0.012);
   Particles p;
@@ -215,10 +210,11 @@ TEST(RunTest, LatticePairsExactlyAtTheCutOffAreListed) {
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 10; ++j)
       for (int k = 0; k < 10; ++k) p.add(0.375 * i, 0.375 * j, 0.375 * k, 0.125);
+  p.add(1.5, 1.5, -2.0, 1.5);  // a big one touching the lattice: two levels
   const PairSet all = bruteForce(p, 0.25, p.size());
   std::size_t atCut = 0;
   for (const auto& [i, j] : all) atCut += p.distanceSquared(i, j) == 0.5625 ? 1 : 0;
-  EXPECT_EQ(atCut, 3u * 8 * 10 * 10);  // (i, i + 2) along each axis
+  EXPECT_EQ(atCut, 3u * 8 * 10 * 10);  // (i, i + 2) along each axis (the big one: none)
   expectBruteForce(p, 0.25, p.size(), "lattice");
   expectBruteForce(p, 0.25, 400, "lattice with ghosts");
 }
