@@ -45,6 +45,7 @@
 #include "tree/DenseLevel.h"
 #include "tree/GridGeometry.h"
 #include "tree/RadixSort.h"
+#include "tree/RunTest.h"
 #include "tree/SpacetreeStatistics.h"
 #include "tree/VertexBitmap.h"
 #include "tree/VertexKey.h"
@@ -198,18 +199,26 @@ class Spacetree {
   }
 
   // What the traversal calls (positions in the sorted arrays): onPair(a, b) for one candidate
-  // pair, and onPair.range(a, first, last, aActive) for a against each of the contiguous
-  // positions [first, last) in order, skipping the pairs of two inactive particles (aActive:
-  // whether a is active); onPair.finish() once at the end of the sweep. Candidates go to the
-  // visitor as they are; pairs within the cut-off are selected in blocks (see WithinVisitor).
+  // pair, onPair.runs(aBegin, aEnd, from, to, triangle) for each a of [aBegin, aEnd), in
+  // order, against each of the contiguous positions [from, to) (triangle: [a + 1, to)) in
+  // order, skipping the pairs of two inactive particles, and onPair.vertexRuns(aBegin, aEnd,
+  // runs, nRuns) for the same on each run in turn, the first a triangle (the runs of one
+  // vertex); onPair.finish() once at the end of the sweep. Candidates go to the visitor as they
+  // are; pairs within the cut-off are selected in blocks (see WithinVisitor).
   template <class Visit>
   struct CandidateVisitor {
     const Spacetree& tree;
     Visit& visit;
     void operator()(std::int32_t a, std::int32_t b) const { visit(tree.sortedId_[a], tree.sortedId_[b]); }
-    void range(std::int32_t a, std::int32_t first, std::int32_t last, bool aActive) const {
-      for (std::int32_t b = first; b < last; ++b)
-        if (aActive || tree.isActive(b)) (*this)(a, b);
+    void runs(std::int32_t aBegin, std::int32_t aEnd, std::int32_t from, std::int32_t to, bool triangle) const {
+      for (std::int32_t a = aBegin; a < aEnd; ++a) {
+        const bool aActive = tree.isActive(a);
+        for (std::int32_t b = triangle ? a + 1 : from; b < to; ++b)
+          if (aActive || tree.isActive(b)) (*this)(a, b);
+      }
+    }
+    void vertexRuns(std::int32_t aBegin, std::int32_t aEnd, const CandidateRun* list, int nRuns) const {
+      for (int run = 0; run < nRuns; ++run) runs(aBegin, aEnd, list[run].from, list[run].to, run == 0);
     }
     void finish() const {}
   };
@@ -217,7 +226,9 @@ class Spacetree {
   // computes every distance and keeps the positions within the cut-off, then the hits are
   // visited in order. On a dense level most candidates miss and most runs are short (one
   // particle per vertex against the 2-3 of a neighbouring row), so testing them as they come
-  // would pay a mispredicted branch per run; the block pass pays none.
+  // would pay a mispredicted branch per run; the block pass pays none. On a level of several
+  // particles per vertex the runs of a vertex are pre-tested where they are found (RunTest.h),
+  // so only the pairs near or within the cut-off are queued.
   template <class Visit>
   struct WithinVisitor {
     const Spacetree& tree;
@@ -225,12 +236,17 @@ class Spacetree {
     double halo, scale;
     bool allActive;  // no inactive particle: no activity test per hit
     static constexpr std::int32_t kBlock = 1024, kShortRun = 4;
+    static constexpr std::int32_t kSlack = std::max(kShortRun, kRunTestSlack);
+    static constexpr std::int32_t kQueuedRun = 16;  // see testRun
     std::int32_t queued = 0;
-    // not initialised: filled before read; kShortRun slots of slack for the short-run writes
-    std::int32_t first[kBlock + kShortRun], second[kBlock + kShortRun], hit[kBlock + kShortRun];
+    // not initialised: filled before read; slack for the short-run and run-test writes
+    std::int32_t first[kBlock + kSlack], second[kBlock + kSlack], hit[kBlock + kSlack];
+    const RunTest testCandidates = selectedRunTest();
+    const RunTestParticles particles;
 
     WithinVisitor(const Spacetree& t, Visit& v, double h, double s)
-        : tree(t), visit(v), halo(h), scale(s), allActive(t.nActive_ >= t.particleCount()) {}
+        : tree(t), visit(v), halo(h), scale(s), allActive(t.nActive_ >= t.particleCount()),
+          particles{t.sx_.data(), t.sy_.data(), t.sz_.data(), t.sr_.data(), h, s} {}
     double distanceSquared(std::int32_t a, std::int32_t b) const {
       const double dx = tree.sx_[a] - tree.sx_[b], dy = tree.sy_[a] - tree.sy_[b], dz = tree.sz_[a] - tree.sz_[b];
       return dx * dx + dy * dy + dz * dz;
@@ -244,36 +260,79 @@ class Spacetree {
       else
         visit(tree.sortedId_[a], tree.sortedId_[b], d2);
     }
-    // The callers queue only pairs with an active particle, except range() for an inactive a,
+    // The callers queue only pairs with an active particle, except runs() for an inactive a,
     // whose pairs with inactive particles the flush drops.
     void operator()(std::int32_t a, std::int32_t b) {
       first[queued] = a;
       second[queued] = b;
       if (++queued == kBlock) flush();
     }
-    void range(std::int32_t a, std::int32_t from, std::int32_t to, bool) {
-      // A short run (a dense level: the 0-3 particles of a forward row's k - 1 .. k + 1) is
-      // written as kShortRun slots whatever its length, and counted by its length: no branch
-      // on the length, which varies from run to run.
-      if (to - from <= kShortRun) {
-        for (std::int32_t t = 0; t < kShortRun; ++t) {
-          first[queued + t] = a;
-          second[queued + t] = from + t;
-        }
-        queued += std::max(to - from, 0);
-        if (queued >= kBlock) flush();
+    void runs(std::int32_t aBegin, std::int32_t aEnd, std::int32_t from, std::int32_t to, bool triangle) {
+      if (to - (triangle ? aBegin + 1 : from) > kShortRun) {
+        testRun(aBegin, aEnd, from, to, triangle);
         return;
       }
-      while (from < to) {
-        const std::int32_t take = std::min(to - from, kBlock - queued);
-        for (std::int32_t t = 0; t < take; ++t) {
+      // Short runs (a dense level: the 0-3 particles of a forward row's k - 1 .. k + 1) are
+      // each written as kShortRun slots whatever their length, and counted by their length:
+      // no branch on the length, which varies from run to run.
+      for (std::int32_t a = aBegin; a < aEnd; ++a) {
+        const std::int32_t b0 = triangle ? a + 1 : from;
+        for (std::int32_t t = 0; t < kShortRun; ++t) {
           first[queued + t] = a;
-          second[queued + t] = from + t;
+          second[queued + t] = b0 + t;
         }
-        queued += take;
-        from += take;
-        if (queued == kBlock) flush();
+        queued += std::max(to - b0, 0);
+        if (queued >= kBlock) flush();
       }
+    }
+    void vertexRuns(std::int32_t aBegin, std::int32_t aEnd, const CandidateRun* list, int nRuns) {
+      testRuns(aBegin, aEnd, list, nRuns, true);
+    }
+    // A longer run of a level of about one particle per vertex (a few are): queued whole up to
+    // kQueuedRun candidates per particle (the pre-test, called now and then, costs more there),
+    // else pre-tested.
+    [[gnu::noinline]] void testRun(std::int32_t aBegin, std::int32_t aEnd, std::int32_t from, std::int32_t to,
+                                   bool triangle) {
+      if (to - (triangle ? aBegin + 1 : from) > kQueuedRun) {
+        const CandidateRun run{from, to};
+        testRuns(aBegin, aEnd, &run, 1, triangle);
+        return;
+      }
+      for (std::int32_t a = aBegin; a < aEnd; ++a)
+        for (std::int32_t b = triangle ? a + 1 : from; b < to;) {
+          const std::int32_t take = std::min(to - b, kBlock - queued);
+          for (std::int32_t t = 0; t < take; ++t) {
+            first[queued + t] = a;
+            second[queued + t] = b + t;
+          }
+          queued += take;
+          b += take;
+          if (queued == kBlock) flush();
+        }
+    }
+    // Pre-tests the runs, all at once when they fit in a block. Out of line: a dense pack of
+    // one particle per vertex never comes here.
+    [[gnu::noinline]] void testRuns(std::int32_t aBegin, std::int32_t aEnd, const CandidateRun* list, int nRuns,
+                                    bool triangle) {
+      const std::int64_t n = aEnd - aBegin;
+      std::int64_t count = 0;
+      for (int run = 0; run < nRuns; ++run)
+        count += run == 0 && triangle ? n * (list[0].to - aBegin - 1) - n * (n - 1) / 2
+                                      : n * (list[run].to - list[run].from);
+      if (count <= kBlock) {
+        if (queued + count > kBlock) flush();
+        queued = testCandidates(particles, aBegin, aEnd, list, nRuns, triangle, first, second, queued);
+      } else {
+        for (int run = 0; run < nRuns; ++run)
+          for (std::int32_t a = aBegin; a < aEnd; ++a)
+            for (std::int32_t b = run == 0 && triangle ? a + 1 : list[run].from; b < list[run].to;) {
+              if (queued == kBlock) flush();
+              const CandidateRun chunk{b, std::min(list[run].to, b + kBlock - queued)};
+              queued = testCandidates(particles, a, a + 1, &chunk, 1, false, first, second, queued);
+              b = chunk.to;
+            }
+      }
+      if (queued >= kBlock) flush();
     }
     void flush() {
       std::int32_t hits = 0;
@@ -298,8 +357,12 @@ class Spacetree {
   void sweep(PairFunction&& onPair, double pruneScale);
   // Pairs within the vertices of level l and between forward neighbours. kCrowded: the level
   // holds crowded vertices (else their branches are compiled out).
-  template <bool kCrowded, class PairFunction>
+  // kByVertex: a level of several particles per vertex, whose runs (mostly longer than the
+  // visitor's short ones) go to it a vertex at a time.
+  template <bool kCrowded, bool kByVertex, class PairFunction>
   void sweepLevel(int l, PairFunction& onPair, double pruneScale, std::uint64_t& comparisons);
+  // Particles per vertex from which a level is swept kByVertex.
+  static constexpr double kByVertexParticlesPerVertex = 1.5;
   // Whether the virtual links of coarse level m on finer level l are found from the fine
   // vertices (each looking up the 3x3x3 coarse vertices around it) rather than from the coarse
   // particles (link balls), by the estimated cost of each; `around` is then the coarse level's
