@@ -41,6 +41,7 @@ double relativeExcess(const SoA& s, double halo, double scale, int a, int b) {
 
 std::vector<std::pair<RunTest, const char*>> versions() {
   std::vector<std::pair<RunTest, const char*>> v{{spacetree::portableRunTest(), "portable"}};
+  if (RunTest avx2 = spacetree::avx2RunTest()) v.push_back({avx2, "avx2"});
   if (RunTest fast = spacetree::avx512RunTest()) v.push_back({fast, "avx512"});
   return v;
 }

@@ -52,6 +52,51 @@ std::int32_t testPortable(const RunTestParticles& p, std::int32_t aBegin, std::i
 }
 
 #ifdef SPACETREE_RUN_TEST_X86
+// Four at a time (AVX2, where the processor has no AVX-512): a is written to all four slots,
+// each candidate at the next slot, which advances only when it is kept (AVX2 has no
+// compress-store); the run's tail goes one by one.
+__attribute__((target("avx2"))) std::int32_t testAvx2(const RunTestParticles& p, std::int32_t aBegin, std::int32_t aEnd,
+                                                      const CandidateRun* runs, int nRuns, bool triangle,
+                                                      std::int32_t* first, std::int32_t* second, std::int32_t q) {
+  const __m256d halo4 = _mm256_set1_pd(p.halo), scale4 = _mm256_set1_pd(p.scale),
+                margin4 = _mm256_set1_pd(kRunTestMargin);
+  for (int run = 0; run < nRuns; ++run) {
+    const std::int32_t from = runs[run].from, to = runs[run].to;
+    const bool fromNext = run == 0 && triangle;
+    for (std::int32_t a = aBegin; a < aEnd; ++a) {
+      const double xa = p.x[a], ya = p.y[a], za = p.z[a], ra = p.r[a];
+      const __m256d x4 = _mm256_set1_pd(xa), y4 = _mm256_set1_pd(ya), z4 = _mm256_set1_pd(za), r4 = _mm256_set1_pd(ra);
+      const __m128i a4 = _mm_set1_epi32(a);
+      std::int32_t b = fromNext ? a + 1 : from;
+      for (; b + 4 <= to; b += 4) {
+        const __m256d dx = _mm256_sub_pd(x4, _mm256_loadu_pd(p.x + b)), dy = _mm256_sub_pd(y4, _mm256_loadu_pd(p.y + b)),
+                      dz = _mm256_sub_pd(z4, _mm256_loadu_pd(p.z + b));
+        const __m256d d2 =
+            _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+        const __m256d c = _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(r4, _mm256_loadu_pd(p.r + b)), halo4), scale4);
+        const int kept = _mm256_movemask_pd(_mm256_cmp_pd(d2, _mm256_mul_pd(_mm256_mul_pd(c, c), margin4), _CMP_LE_OQ));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(first + q), a4);
+        second[q] = b;
+        q += kept & 1;
+        second[q] = b + 1;
+        q += (kept >> 1) & 1;
+        second[q] = b + 2;
+        q += (kept >> 2) & 1;
+        second[q] = b + 3;
+        q += kept >> 3;
+      }
+      for (; b < to; ++b) {
+        const double dx = xa - p.x[b], dy = ya - p.y[b], dz = za - p.z[b];
+        const double c = (ra + p.r[b] + p.halo) * p.scale;
+        first[q] = a;
+        second[q] = b;
+        q += dx * dx + dy * dy + dz * dz <= c * c * kRunTestMargin ? 1 : 0;
+      }
+    }
+  }
+  return q;
+}
+
 // Eight at a time: masked loads past the run's end (nothing read there), the kept positions
 // compress-stored; a is written to all eight slots. A run of at most eight against several a
 // (a row of a vertex's forward neighbours) is loaded once.
@@ -110,10 +155,18 @@ RunTest avx512RunTest() {
   return nullptr;
 }
 
+RunTest avx2RunTest() {
+#ifdef SPACETREE_RUN_TEST_X86
+  if (__builtin_cpu_supports("avx2")) return &testAvx2;
+#endif
+  return nullptr;
+}
+
 RunTest selectedRunTest() {
   static const RunTest selected = [] {
-    const RunTest fast = avx512RunTest();
-    return fast ? fast : portableRunTest();
+    if (const RunTest fast = avx512RunTest()) return fast;
+    if (const RunTest avx2 = avx2RunTest()) return avx2;
+    return portableRunTest();
   }();
   return selected;
 }

@@ -11,8 +11,8 @@
 // particles) most candidates come in such runs and most miss: testing a run where it is found,
 // with a's coordinates held and the run's loaded contiguously, saves queueing every candidate
 // and gathering its coordinates again. Versions: two candidates at a time (SSE2, every x86-64)
-// and, chosen at run time where the processor has it, eight at a time with AVX-512 (masked
-// loads for the tail, compress-store of the kept positions).
+// and, chosen at run time by what the processor has, four at a time with AVX2 or eight with
+// AVX-512 (masked loads for the tail, compress-store of the kept positions).
 #pragma once
 
 #include <cstdint>
@@ -45,9 +45,10 @@ using RunTest = std::int32_t (*)(const RunTestParticles& p, std::int32_t aBegin,
 
 // The fastest version this processor runs (chosen once).
 RunTest selectedRunTest();
-// Each version, for tests: the portable one always, the AVX-512 one only where the processor
-// has AVX-512F/VL (else nullptr).
+// Each version, for tests: the portable one always, the AVX2 and AVX-512 ones only where the
+// processor has AVX2 / AVX-512F+VL (else nullptr).
 RunTest portableRunTest();
+RunTest avx2RunTest();
 RunTest avx512RunTest();
 
 }  // namespace spacetree
