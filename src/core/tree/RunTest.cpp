@@ -13,6 +13,20 @@
 namespace spacetree {
 namespace {
 
+// a against the candidates [b, to) one by one (a run's tail).
+inline std::int32_t testOneByOne(const RunTestParticles& p, std::int32_t a, std::int32_t b, std::int32_t to,
+                                 std::int32_t* first, std::int32_t* second, std::int32_t q) {
+  const double xa = p.x[a], ya = p.y[a], za = p.z[a], ra = p.r[a];
+  for (; b < to; ++b) {
+    const double dx = xa - p.x[b], dy = ya - p.y[b], dz = za - p.z[b];
+    const double c = (ra + p.r[b] + p.halo) * p.scale;
+    first[q] = a;
+    second[q] = b;
+    q += dx * dx + dy * dy + dz * dz <= c * c * kRunTestMargin ? 1 : 0;
+  }
+  return q;
+}
+
 std::int32_t testPortable(const RunTestParticles& p, std::int32_t aBegin, std::int32_t aEnd, const CandidateRun* runs,
                           int nRuns, bool triangle, std::int32_t* first, std::int32_t* second, std::int32_t q) {
   for (int run = 0; run < nRuns; ++run) {
@@ -39,13 +53,7 @@ std::int32_t testPortable(const RunTestParticles& p, std::int32_t aBegin, std::i
         q += (kept & 1) + (kept >> 1);
       }
 #endif
-      for (; b < to; ++b) {
-        const double dx = xa - p.x[b], dy = ya - p.y[b], dz = za - p.z[b];
-        const double c = (ra + p.r[b] + p.halo) * p.scale;
-        first[q] = a;
-        second[q] = b;
-        q += dx * dx + dy * dy + dz * dz <= c * c * kRunTestMargin ? 1 : 0;
-      }
+      q = testOneByOne(p, a, b, to, first, second, q);
     }
   }
   return q;
@@ -85,13 +93,7 @@ __attribute__((target("avx2"))) std::int32_t testAvx2(const RunTestParticles& p,
         second[q] = b + 3;
         q += kept >> 3;
       }
-      for (; b < to; ++b) {
-        const double dx = xa - p.x[b], dy = ya - p.y[b], dz = za - p.z[b];
-        const double c = (ra + p.r[b] + p.halo) * p.scale;
-        first[q] = a;
-        second[q] = b;
-        q += dx * dx + dy * dy + dz * dz <= c * c * kRunTestMargin ? 1 : 0;
-      }
+      q = testOneByOne(p, a, b, to, first, second, q);
     }
   }
   return q;
